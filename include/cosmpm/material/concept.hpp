@@ -1,0 +1,63 @@
+#pragma once
+// The constitutive-model concept: a point-level kernel that turns a strain increment into a
+// new stress and state. The engine stores stress_type and state_type per particle, so both
+// are fixed-size: stress_type an Eigen fixed-size vector, state_type trivially copyable
+// (SoA arrays, checkpoints, HDF5).
+#include <array>
+#include <concepts>
+#include <cstddef>
+#include <string_view>
+#include <type_traits>
+
+namespace cosmpm::material {
+
+// A state that can be written to output: a fixed list of scalar labels and their values.
+template <class S>
+concept OutputState = requires(const S& state) {
+  { S::labels } -> std::convertible_to<std::array<std::string_view, S::labels.size()>>;
+  { state.values() } -> std::convertible_to<std::array<double, S::labels.size()>>;
+};
+
+template <class M>
+concept ConstitutiveModel =
+    requires(const M& model, typename M::stress_type& stress, typename M::state_type& state,
+             const typename M::strain_type& strain_increment) {
+      typename M::scalar_type;
+      typename M::stress_type;
+      typename M::strain_type;
+      typename M::state_type;
+      // Stress in, stress out: `stress` holds the stress at the start of the increment.
+      { model.update(stress, state, strain_increment) } -> std::same_as<void>;
+      // Stiffest wave modulus (p-wave, constrained) for the stable time step.
+      { model.p_wave_modulus() } -> std::convertible_to<typename M::scalar_type>;
+      { model.shear_modulus() } -> std::convertible_to<typename M::scalar_type>;
+      { M::is_cosserat } -> std::convertible_to<bool>;
+    } && std::is_trivially_copyable_v<typename M::state_type> &&
+    OutputState<typename M::state_type>;
+
+// A model that also gives the algorithmic (consistent) tangent d(stress)/d(strain increment),
+// for implicit solvers. Layout: tangent(i, j) = d stress[i] / d strain_increment[j].
+template <class M>
+concept HasConsistentTangent =
+    ConstitutiveModel<M> &&
+    requires(const M& model, typename M::stress_type& stress, typename M::state_type& state,
+             const typename M::strain_type& strain_increment, typename M::tangent_type& tangent) {
+      typename M::tangent_type;
+      { model.update(stress, state, strain_increment, tangent) } -> std::same_as<void>;
+    };
+
+// State of a model without internal variables.
+struct NoState {
+  static constexpr std::array<std::string_view, 0> labels{};
+  std::array<double, 0> values() const { return {}; }
+};
+
+// State of the perfectly plastic models: the paper's yield-point maps use `plastic`.
+struct PlasticState {
+  double plastic_shear_strain = 0.0;  // accumulated equivalent plastic shear strain
+  double plastic = 0.0;               // 1 if the last update returned to the yield surface
+  static constexpr std::array<std::string_view, 2> labels{"plastic_shear_strain", "plastic"};
+  std::array<double, 2> values() const { return {plastic_shear_strain, plastic}; }
+};
+
+}  // namespace cosmpm::material

@@ -1,0 +1,27 @@
+#pragma once
+// The shape-function concept. A shape function is a stateless 1D kernel; the Dim-dimensional
+// weights are its tensor product (shape/stencil.hpp).
+//
+// Kernel::evaluate(xi, half_width, node_count, weights, gradients) -> first node index
+//   xi          position in cell units along the axis (node k sits at xi = k), 0 < xi < node_count - 1
+//   half_width  particle half-size in cell units (GIMP uses it, others ignore it)
+//   node_count  nodes along the axis (boundary-modified splines need it)
+//   weights[k], gradients[k]: N and dN/dxi of node first + k, k < Kernel::support.
+// Contract: 0 <= first <= node_count - support; nodes outside the grid never receive weight.
+#include <array>
+#include <concepts>
+
+#include "cosmpm/core/types.hpp"
+
+namespace cosmpm::shape {
+
+template <class K>
+concept Kernel = requires(double xi, double half_width, Index node_count,
+                          std::array<double, K::support>& weights,
+                          std::array<double, K::support>& gradients) {
+  { K::support } -> std::convertible_to<int>;
+  { K::evaluate(xi, half_width, node_count, weights, gradients) } -> std::same_as<Index>;
+  { K::name() } -> std::convertible_to<const char*>;
+};
+
+}  // namespace cosmpm::shape
