@@ -27,7 +27,11 @@ using CosseratTensor2D = Eigen::Matrix<T, 7, 1>;
 
 inline constexpr double pi = std::numbers::pi;
 
-constexpr double degrees_to_radians(double degrees) { return degrees * pi / 180.0; }
-constexpr double radians_to_degrees(double radians) { return radians * 180.0 / pi; }
+constexpr double degrees_to_radians(double degrees) {
+  return degrees * pi / 180.0;
+}
+constexpr double radians_to_degrees(double radians) {
+  return radians * 180.0 / pi;
+}
 
 }  // namespace cosmpm

@@ -1,0 +1,23 @@
+#pragma once
+// OpenMP without warnings when it is off: loops compile serially and stay correct.
+#if defined(_OPENMP)
+#include <omp.h>
+#define COSMPM_PRAGMA(x) _Pragma(#x)
+#define COSMPM_OMP_PARALLEL_FOR(threads) COSMPM_PRAGMA(omp parallel for schedule(static) num_threads(threads))
+#else
+#define COSMPM_OMP_PARALLEL_FOR(threads)
+#endif
+
+namespace cosmpm {
+
+// Threads the engine uses when the user asks for `requested` (0: OpenMP's default).
+inline int resolve_thread_count(int requested) {
+#if defined(_OPENMP)
+  return requested > 0 ? requested : omp_get_max_threads();
+#else
+  (void)requested;
+  return 1;
+#endif
+}
+
+}  // namespace cosmpm

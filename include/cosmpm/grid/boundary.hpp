@@ -1,0 +1,82 @@
+#pragma once
+// Velocity boundary conditions on the faces of the grid box, applied to the nodes of each face.
+#include <array>
+#include <cmath>
+#include <string>
+
+#include "cosmpm/core/error.hpp"
+#include "cosmpm/core/types.hpp"
+
+namespace cosmpm::grid {
+
+enum class BoundaryKind {
+  free,      // nothing imposed
+  fixed,     // all velocity components zero
+  roller,    // normal velocity zero, tangential free
+  friction,  // no penetration, free separation, Coulomb friction on the tangential velocity
+};
+
+struct FaceCondition {
+  BoundaryKind kind = BoundaryKind::free;
+  double friction_coefficient = 0.0;  // mu, used by BoundaryKind::friction
+};
+
+// Faces are numbered 2 * axis + side: 0 = x_min, 1 = x_max, 2 = y_min, 3 = y_max, ...
+template <int Dim>
+class BoundaryConditions {
+ public:
+  static constexpr int face_count = 2 * Dim;
+  static constexpr int face(int axis, bool upper) { return 2 * axis + (upper ? 1 : 0); }
+
+  void set(int face_index, BoundaryKind kind, double friction_coefficient = 0.0) {
+    require_in_range("BoundaryConditions::set", "face", face_index, 0, face_count - 1,
+                     Bounds::closed);
+    if (kind == BoundaryKind::friction) {
+      require_non_negative("BoundaryConditions::set", "friction_coefficient", friction_coefficient);
+    }
+    faces_[face_index] = {kind, friction_coefficient};
+  }
+  const FaceCondition& operator[](int face_index) const { return faces_[face_index]; }
+
+  // Imposes the face condition on the updated velocity `v` of a node lying on that face. For
+  // a friction wall the removed normal velocity is the impulse that bounds the tangential one.
+  static void apply(const FaceCondition& condition, int axis, bool upper, Vec<Dim>& v) {
+    switch (condition.kind) {
+      case BoundaryKind::free:
+        return;
+      case BoundaryKind::fixed:
+        v.setZero();
+        return;
+      case BoundaryKind::roller:
+        v[axis] = 0.0;
+        return;
+      case BoundaryKind::friction: {
+        // Outward normal: -e_axis at the lower face, +e_axis at the upper one.
+        const double outward = upper ? v[axis] : -v[axis];
+        if (outward <= 0.0)
+          return;  // separating: free
+        v[axis] = 0.0;
+        double tangential_norm = 0.0;
+        for (int d = 0; d < Dim; ++d) {
+          if (d != axis)
+            tangential_norm += v[d] * v[d];
+        }
+        tangential_norm = std::sqrt(tangential_norm);
+        if (tangential_norm == 0.0)
+          return;
+        const double allowed = condition.friction_coefficient * outward;
+        const double scale = tangential_norm > allowed ? 1.0 - allowed / tangential_norm : 0.0;
+        for (int d = 0; d < Dim; ++d) {
+          if (d != axis)
+            v[d] *= scale;
+        }
+        return;
+      }
+    }
+  }
+
+ private:
+  std::array<FaceCondition, face_count> faces_{};
+};
+
+}  // namespace cosmpm::grid

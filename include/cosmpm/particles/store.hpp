@@ -1,0 +1,82 @@
+#pragma once
+// Structure-of-arrays particle storage keyed by typed field tags. A tag is an empty struct
+// with `value_type` and a `label()` that is also the field's HDF5 dataset name; which fields
+// exist follows from the composition (continuum and material), never from a runtime flag.
+#include <concepts>
+#include <string_view>
+#include <tuple>
+#include <type_traits>
+#include <utility>
+#include <vector>
+
+#include "cosmpm/core/types.hpp"
+
+namespace cosmpm::particles {
+
+template <class Tag>
+concept FieldTag = requires {
+  typename Tag::value_type;
+  { Tag::label() } -> std::convertible_to<std::string_view>;
+};
+
+template <FieldTag... Tags>
+class Store {
+ public:
+  using tags = std::tuple<Tags...>;
+
+  template <class Tag>
+  static constexpr bool has = (std::is_same_v<Tag, Tags> || ...);
+
+  Index size() const { return size_; }
+
+  // Appends `count` value-initialised particles and returns the index of the first one.
+  Index append(Index count) {
+    const Index first = size_;
+    resize(size_ + count);
+    return first;
+  }
+
+  void resize(Index count) {
+    std::apply([count](auto&... column) { (column.resize(count), ...); }, columns_);
+    size_ = count;
+  }
+
+  void reserve(Index count) {
+    std::apply([count](auto&... column) { (column.reserve(count), ...); }, columns_);
+  }
+
+  template <class Tag>
+  requires has<Tag> std::vector<typename Tag::value_type>
+  &get() { return std::get<index_of<Tag>()>(columns_); }
+
+  template <class Tag>
+  requires has<Tag>
+  const std::vector<typename Tag::value_type>& get() const {
+    return std::get<index_of<Tag>()>(columns_);
+  }
+
+  // Calls f(Tag{}, column) for every field, in declaration order.
+  template <class F>
+  void for_each_field(F&& f) {
+    (f(Tags{}, get<Tags>()), ...);
+  }
+  template <class F>
+  void for_each_field(F&& f) const {
+    (f(Tags{}, get<Tags>()), ...);
+  }
+
+ private:
+  template <class Tag>
+  static constexpr std::size_t index_of() {
+    std::size_t index = 0;
+    std::size_t found = 0;
+    ((std::is_same_v<Tag, Tags> ? (found = index, ++index) : ++index), ...);
+    return found;
+  }
+
+  // One column per tag, found by position, so tags sharing a value_type stay distinct.
+  std::tuple<std::vector<typename Tags::value_type>...> columns_;
+  Index size_ = 0;
+};
+
+}  // namespace cosmpm::particles

@@ -1,0 +1,592 @@
+#pragma once
+// An explicit MPM simulation composed at compile time from a shape-function kernel, a
+// continuum (which carries the constitutive model), a contact law and an update scheme:
+//
+//   using Sim = cosmpm::Simulation<2, shape::Linear,
+//   continuum::Classical<material::LinearElastic<>>,
+//                                  contact::SingleField, integrator::USL>;
+//
+// The step is a sequence of named stages over SoA arrays (map_to_grid, update_grid,
+// map_to_particles, update_stress), each public so a benchmark can time it on its own.
+// Scatter to the grid is deterministic whatever the thread count: particles are bucketed
+// into blocks of cells and blocks of one colour (parity per axis) never share a node.
+#include <algorithm>
+#include <array>
+#include <cmath>
+#include <cstdint>
+#include <limits>
+#include <sstream>
+#include <string>
+#include <utility>
+#include <vector>
+
+#include <Eigen/LU>  // determinant
+
+#include "cosmpm/contact/single_field.hpp"
+#include "cosmpm/core/error.hpp"
+#include "cosmpm/core/parallel.hpp"
+#include "cosmpm/core/types.hpp"
+#include "cosmpm/grid/boundary.hpp"
+#include "cosmpm/grid/grid.hpp"
+#include "cosmpm/integrator/schemes.hpp"
+#include "cosmpm/material/concept.hpp"
+#include "cosmpm/particles/fields.hpp"
+#include "cosmpm/shape/concept.hpp"
+#include "cosmpm/shape/stencil.hpp"
+
+namespace cosmpm {
+
+template <int Dim>
+struct SimulationParameters {
+  Vec<Dim> gravity = Vec<Dim>::Zero();
+  // Fraction of FLIP in the particle velocity update: 1 = FLIP (the paper's Eq. 18), 0 = PIC.
+  double flip_fraction = 1.0;
+  // Cundall local non-viscous damping coefficient on the nodal unbalanced force, in [0, 1).
+  double damping = 0.0;
+  // Time step; 0 means cfl * stable_time_step().
+  double time_step = 0.0;
+  double cfl = 0.5;
+  // A requested time step above the stable one is an error unless this is set.
+  bool allow_unstable_time_step = false;
+  // OpenMP threads; 0 means OpenMP's default. Results do not depend on it.
+  int threads = 0;
+  // Nodes lighter than this fraction of a typical particle mass are treated as empty.
+  double empty_node_mass_fraction = 1e-12;
+};
+
+namespace detail {
+struct ParticleBlocks {
+  static constexpr Index block_cells = 4;  // >= the widest kernel support, so same-colour
+                                           // blocks two apart never share a node
+};
+}  // namespace detail
+
+template <int Dim, shape::Kernel Kernel, class Continuum, class Contact = contact::SingleField,
+          integrator::Integrator Scheme = integrator::USL>
+class Simulation {
+ public:
+  using model_type = typename Continuum::model_type;
+  using continuum_type = Continuum;
+  using kernel_type = Kernel;
+  using scheme_type = Scheme;
+  using contact_type = Contact;
+  using store_type = typename Continuum::template particle_store<Dim>;
+  using stress_type = typename model_type::stress_type;
+  using state_type = typename model_type::state_type;
+  using stencil_type = shape::Stencil<Dim, Kernel>;
+  static constexpr int dim = Dim;
+
+  struct NodeFields {
+    std::vector<double> mass;
+    std::vector<Vec<Dim>> momentum;  // momentum, then velocity at the start of the step
+    std::vector<Vec<Dim>> force;
+    std::vector<Vec<Dim>> velocity;  // updated velocity (end of the step)
+    std::vector<Vec<Dim>> acceleration;
+  };
+
+  Simulation(const grid::Grid<Dim>& background, const model_type& model,
+             const SimulationParameters<Dim>& parameters = {})
+      : grid_(background), model_(model), parameters_(parameters) {
+    require_in_range("SimulationParameters", "flip_fraction", parameters.flip_fraction, 0.0, 1.0,
+                     Bounds::closed);
+    require_in_range("SimulationParameters", "damping", parameters.damping, 0.0, 1.0,
+                     Bounds::left_closed);
+    require_in_range("SimulationParameters", "cfl", parameters.cfl, 0.0, 1.0, Bounds::right_closed);
+    require_non_negative("SimulationParameters", "time_step", parameters.time_step);
+    require_in_range("SimulationParameters", "threads", parameters.threads, 0, 4096,
+                     Bounds::closed);
+    for (int d = 0; d < Dim; ++d) {
+      require(std::isfinite(parameters.gravity[d]),
+              "SimulationParameters: gravity has a non-finite component");
+    }
+    threads_ = resolve_thread_count(parameters.threads);
+    const Index nodes = grid_.node_count();
+    nodes_.mass.assign(nodes, 0.0);
+    nodes_.momentum.assign(nodes, Vec<Dim>::Zero());
+    nodes_.force.assign(nodes, Vec<Dim>::Zero());
+    nodes_.velocity.assign(nodes, Vec<Dim>::Zero());
+    nodes_.acceleration.assign(nodes, Vec<Dim>::Zero());
+    for (int d = 0; d < Dim; ++d) {
+      blocks_per_axis_[d] = (grid_.cells(d) + detail::ParticleBlocks::block_cells - 1) /
+                            detail::ParticleBlocks::block_cells;
+    }
+    Index block_total = 1;
+    for (int d = 0; d < Dim; ++d)
+      block_total *= blocks_per_axis_[d];
+    block_start_.assign(block_total + 1, 0);
+  }
+
+  // --- set-up -----------------------------------------------------------------------------
+
+  // Adds particles at `positions`, each of volume `volume` and density `density`, with
+  // half-width (in cell units) `half_width` for GIMP, belonging to `body`. Returns the index
+  // of the first new particle. Stresses start at zero; set them through particles().
+  Index add_particles(const std::vector<Vec<Dim>>& positions, double volume, double density,
+                      const Vec<Dim>& half_width, std::int32_t body = 0) {
+    require_positive("Simulation::add_particles", "volume", volume);
+    require_positive("Simulation::add_particles", "density", density);
+    for (std::size_t i = 0; i < positions.size(); ++i) {
+      if (!grid_.contains(positions[i])) {
+        std::ostringstream message;
+        message << "Simulation::add_particles: particle " << i << " at ("
+                << positions[i].transpose() << ") lies outside the grid box ["
+                << grid_.origin().transpose() << "] + [" << grid_.extent().transpose() << "]";
+        throw Error(message.str());
+      }
+    }
+    const Index first = particles_.append(static_cast<Index>(positions.size()));
+    auto& x = particles_.template get<particles::field::Position<Dim>>();
+    auto& x0 = particles_.template get<particles::field::InitialPosition<Dim>>();
+    auto& mass = particles_.template get<particles::field::Mass>();
+    auto& vol = particles_.template get<particles::field::Volume>();
+    auto& vol0 = particles_.template get<particles::field::InitialVolume>();
+    auto& half = particles_.template get<particles::field::HalfWidth<Dim>>();
+    auto& F = particles_.template get<particles::field::DeformationGradient<Dim>>();
+    auto& owner = particles_.template get<particles::field::Body>();
+    auto& stress = particles_.template get<particles::field::Stress<model_type>>();
+    auto& strain = particles_.template get<particles::field::Strain<model_type>>();
+    for (std::size_t i = 0; i < positions.size(); ++i) {
+      const Index p = first + static_cast<Index>(i);
+      x[p] = positions[i];
+      x0[p] = positions[i];
+      mass[p] = volume * density;
+      vol[p] = volume;
+      vol0[p] = volume;
+      half[p] = half_width;
+      F[p].setIdentity();
+      owner[p] = body;
+      stress[p].setZero();
+      strain[p].setZero();
+    }
+    typical_particle_mass_ = std::max(typical_particle_mass_, volume * density);
+    max_density_ = std::max(max_density_, density);
+    return first;
+  }
+
+  // Largest stable step: the p-wave crosses the smallest cell at most once.
+  double stable_time_step() const {
+    require(max_density_ > 0.0, "Simulation::stable_time_step: no particles have been added");
+    const double wave_speed = std::sqrt(model_.p_wave_modulus() / max_density_);
+    return grid_.min_cell_size() / wave_speed;
+  }
+
+  // The step the run uses: the requested one, checked against the stable one.
+  double time_step() const {
+    const double stable = stable_time_step();
+    if (parameters_.time_step == 0.0)
+      return parameters_.cfl * stable;
+    if (parameters_.time_step > stable && !parameters_.allow_unstable_time_step) {
+      throw Error(
+          "SimulationParameters: time_step = " + detail::format_number(parameters_.time_step) +
+          " s is above the stable time step " + detail::format_number(stable) +
+          " s (valid range (0, " + detail::format_number(stable) +
+          "]; set allow_unstable_time_step to override)");
+    }
+    return parameters_.time_step;
+  }
+
+  // --- the step ---------------------------------------------------------------------------
+
+  // Advances one step of size dt and returns the new time.
+  double step(double dt) {
+    require_positive("Simulation::step", "dt", dt);
+    if constexpr (Scheme::scheme == integrator::Scheme::usf) {
+      map_to_grid(/*with_forces=*/false);
+      grid_velocity_from_momentum();
+      velocity_gradient_from_grid(nodes_.momentum);  // momentum holds the start velocity
+      update_stress(dt);
+      map_forces_to_grid();
+      update_grid(dt);
+      map_to_particles(dt);
+    } else if constexpr (Scheme::scheme == integrator::Scheme::usl) {
+      map_to_grid(/*with_forces=*/true);
+      update_grid(dt);
+      map_to_particles(dt);
+      velocity_gradient_from_grid(nodes_.velocity);
+      update_stress(dt);
+    } else {
+      map_to_grid(/*with_forces=*/true);
+      update_grid(dt);
+      map_to_particles(dt);
+      remap_momentum();
+      velocity_gradient_from_grid(nodes_.velocity);
+      update_stress(dt);
+    }
+    time_ += dt;
+    ++step_count_;
+    return time_;
+  }
+
+  // Stage 1: particle mass and momentum (and, with_forces, internal and external forces) to
+  // the nodes. Buckets particles into coloured blocks first.
+  void map_to_grid(bool with_forces) {
+    bucket_particles();
+    const auto& x = particles_.template get<particles::field::Position<Dim>>();
+    const auto& v = particles_.template get<particles::field::Velocity<Dim>>();
+    const auto& mass = particles_.template get<particles::field::Mass>();
+    const auto& vol = particles_.template get<particles::field::Volume>();
+    const auto& half = particles_.template get<particles::field::HalfWidth<Dim>>();
+    const auto& stress = particles_.template get<particles::field::Stress<model_type>>();
+    clear_nodes(with_forces);
+    const Vec<Dim> gravity = parameters_.gravity;
+    for_each_particle_coloured([&](Index p) {
+      stencil_type s;
+      s.compute(grid_, x[p], half[p]);
+      const double mp = mass[p];
+      const Vec<Dim> momentum = mp * v[p];
+      if (with_forces) {
+        const double vp = vol[p];
+        const Vec<Dim> weight_force = mp * gravity;
+        for (int k = 0; k < stencil_type::size; ++k) {
+          const Index n = s.node[k];
+          const double w = s.weight[k];
+          nodes_.mass[n] += w * mp;
+          nodes_.momentum[n] += w * momentum;
+          nodes_.force[n] +=
+              w * weight_force - vp * Continuum::stress_divergence_term(stress[p], s.gradient[k]);
+        }
+      } else {
+        for (int k = 0; k < stencil_type::size; ++k) {
+          const Index n = s.node[k];
+          const double w = s.weight[k];
+          nodes_.mass[n] += w * mp;
+          nodes_.momentum[n] += w * momentum;
+        }
+      }
+    });
+  }
+
+  // USF only: forces after the stress update (mass and momentum are already on the grid).
+  void map_forces_to_grid() {
+    const auto& x = particles_.template get<particles::field::Position<Dim>>();
+    const auto& mass = particles_.template get<particles::field::Mass>();
+    const auto& vol = particles_.template get<particles::field::Volume>();
+    const auto& half = particles_.template get<particles::field::HalfWidth<Dim>>();
+    const auto& stress = particles_.template get<particles::field::Stress<model_type>>();
+    const Vec<Dim> gravity = parameters_.gravity;
+    // Grid momenta were turned into velocities by grid_velocity_from_momentum; restore them.
+    for (Index n = 0; n < grid_.node_count(); ++n) {
+      nodes_.momentum[n] *= nodes_.mass[n];
+      nodes_.force[n].setZero();
+    }
+    for_each_particle_coloured([&](Index p) {
+      stencil_type s;
+      s.compute(grid_, x[p], half[p]);
+      const Vec<Dim> weight_force = mass[p] * gravity;
+      for (int k = 0; k < stencil_type::size; ++k) {
+        nodes_.force[s.node[k]] +=
+            s.weight[k] * weight_force -
+            vol[p] * Continuum::stress_divergence_term(stress[p], s.gradient[k]);
+      }
+    });
+  }
+
+  // Stage 2: nodal velocity and acceleration from momentum and force (lumped mass), local
+  // damping, boundary conditions. Afterwards nodes_.momentum holds the start velocity v^t,
+  // nodes_.velocity the end velocity v^{t+dt} and nodes_.acceleration (v^{t+dt} - v^t) / dt.
+  void update_grid(double dt) {
+    const double empty = empty_node_mass();
+    const double damping = parameters_.damping;
+    const Index count = grid_.node_count();
+    COSMPM_OMP_PARALLEL_FOR(threads_)
+    for (Index n = 0; n < count; ++n) {
+      const double m = nodes_.mass[n];
+      if (m <= empty) {
+        nodes_.momentum[n].setZero();
+        nodes_.velocity[n].setZero();
+        nodes_.acceleration[n].setZero();
+        continue;
+      }
+      const Vec<Dim> v_start = nodes_.momentum[n] / m;
+      Vec<Dim> force = nodes_.force[n];
+      if (damping > 0.0) {
+        // Cundall: oppose the motion with a fraction of the unbalanced force, per component.
+        for (int d = 0; d < Dim; ++d) {
+          const double sign = v_start[d] > 0.0 ? 1.0 : (v_start[d] < 0.0 ? -1.0 : 0.0);
+          force[d] -= damping * std::abs(force[d]) * sign;
+        }
+      }
+      Vec<Dim> v_end = v_start + dt * force / m;
+      Vec<Dim> v_begin = v_start;
+      apply_boundary_conditions(n, v_begin);
+      apply_boundary_conditions(n, v_end);
+      nodes_.momentum[n] = v_begin;
+      nodes_.velocity[n] = v_end;
+      nodes_.acceleration[n] = (v_end - v_begin) / dt;
+    }
+  }
+
+  // Stage 3: particle velocity (PIC/FLIP blend) and position from the grid.
+  void map_to_particles(double dt) {
+    auto& x = particles_.template get<particles::field::Position<Dim>>();
+    auto& v = particles_.template get<particles::field::Velocity<Dim>>();
+    const auto& half = particles_.template get<particles::field::HalfWidth<Dim>>();
+    const double flip = parameters_.flip_fraction;
+    const Index count = particles_.size();
+    Index first_outside = count;
+    COSMPM_OMP_PARALLEL_FOR(threads_)
+    for (Index p = 0; p < count; ++p) {
+      stencil_type s;
+      s.compute(grid_, x[p], half[p]);
+      Vec<Dim> v_grid = Vec<Dim>::Zero();
+      Vec<Dim> a_grid = Vec<Dim>::Zero();
+      for (int k = 0; k < stencil_type::size; ++k) {
+        v_grid += s.weight[k] * nodes_.velocity[s.node[k]];
+        a_grid += s.weight[k] * nodes_.acceleration[s.node[k]];
+      }
+      v[p] = flip * (v[p] + dt * a_grid) + (1.0 - flip) * v_grid;
+      x[p] += dt * v_grid;
+      if (!grid_.contains(x[p])) {
+        // The lowest index is reported, so the message does not depend on the threads.
+#if defined(_OPENMP)
+#pragma omp critical(cosmpm_outside)
+#endif
+        first_outside = std::min(first_outside, p);
+      }
+    }
+    if (first_outside < count) {
+      std::ostringstream message;
+      const Index p = first_outside;
+      if (!x[p].allFinite() || !v[p].allFinite()) {
+        message << "Simulation: the run went unstable at step " << step_count_ << " (t = " << time_
+                << " s): particle " << p << " has position (" << x[p].transpose()
+                << ") and velocity (" << v[p].transpose()
+                << ") (must be finite); reduce the time step or check the set-up";
+      } else {
+        message << "Simulation: particle " << p << " at (" << x[p].transpose()
+                << ") left the grid box [" << grid_.origin().transpose() << "] + ["
+                << grid_.extent().transpose() << "] at step " << step_count_ << " (t = " << time_
+                << " s); the valid region is the open grid box";
+      }
+      throw Error(message.str());
+    }
+  }
+
+  // MUSL: map the updated particle momenta back to the grid (with the start-of-step stencils,
+  // as the grid mass was) and use that velocity field for the strain rate.
+  void remap_momentum() {
+    const auto& v = particles_.template get<particles::field::Velocity<Dim>>();
+    const auto& mass = particles_.template get<particles::field::Mass>();
+    const auto& half = particles_.template get<particles::field::HalfWidth<Dim>>();
+    std::fill(nodes_.velocity.begin(), nodes_.velocity.end(), Vec<Dim>::Zero());
+    for_each_particle_coloured([&](Index p) {
+      stencil_type s;
+      s.compute(grid_, stencil_positions_[p], half[p]);
+      const Vec<Dim> momentum = mass[p] * v[p];
+      for (int k = 0; k < stencil_type::size; ++k) {
+        nodes_.velocity[s.node[k]] += s.weight[k] * momentum;
+      }
+    });
+    const double empty = empty_node_mass();
+    for (Index n = 0; n < grid_.node_count(); ++n) {
+      if (nodes_.mass[n] <= empty) {
+        nodes_.velocity[n].setZero();
+        continue;
+      }
+      nodes_.velocity[n] /= nodes_.mass[n];
+      apply_boundary_conditions(n, nodes_.velocity[n]);
+    }
+  }
+
+  // Stage 4a: particle velocity gradient from a nodal velocity field, at the stencils of the
+  // start of the step.
+  void velocity_gradient_from_grid(const std::vector<Vec<Dim>>& node_velocity) {
+    auto& L = particles_.template get<particles::field::VelocityGradient<Dim>>();
+    const auto& half = particles_.template get<particles::field::HalfWidth<Dim>>();
+    const Index count = particles_.size();
+    COSMPM_OMP_PARALLEL_FOR(threads_)
+    for (Index p = 0; p < count; ++p) {
+      stencil_type s;
+      s.compute(grid_, stencil_positions_[p], half[p]);
+      Mat<Dim> gradient = Mat<Dim>::Zero();
+      for (int k = 0; k < stencil_type::size; ++k) {
+        gradient.noalias() += node_velocity[s.node[k]] * s.gradient[k].transpose();
+      }
+      L[p] = gradient;
+    }
+  }
+
+  // Stage 4b: constitutive update, deformation gradient and volume.
+  void update_stress(double dt) {
+    const auto& L = particles_.template get<particles::field::VelocityGradient<Dim>>();
+    auto& F = particles_.template get<particles::field::DeformationGradient<Dim>>();
+    auto& vol = particles_.template get<particles::field::Volume>();
+    const auto& vol0 = particles_.template get<particles::field::InitialVolume>();
+    auto& stress = particles_.template get<particles::field::Stress<model_type>>();
+    auto& strain = particles_.template get<particles::field::Strain<model_type>>();
+    auto& state = particles_.template get<particles::field::MaterialState<model_type>>();
+    const Index count = particles_.size();
+    Index first_bad = count;
+    COSMPM_OMP_PARALLEL_FOR(threads_)
+    for (Index p = 0; p < count; ++p) {
+      Continuum::update_stress(model_, L[p], dt, stress[p], state[p], strain[p]);
+      F[p] = (Mat<Dim>::Identity() + dt * L[p]) * F[p];
+      const double J = F[p].determinant();
+      vol[p] = J * vol0[p];
+      if (!(J > 0.0) || !stress[p].allFinite()) {
+#if defined(_OPENMP)
+#pragma omp critical(cosmpm_bad)
+#endif
+        first_bad = std::min(first_bad, p);
+      }
+    }
+    if (first_bad < count) {
+      std::ostringstream message;
+      message << "Simulation: the run went unstable at step " << step_count_ << " (t = " << time_
+              << " s): particle " << first_bad
+              << " has volume ratio det(F) = " << F[first_bad].determinant()
+              << " (valid range (0, inf)) and stress (" << stress[first_bad].transpose()
+              << ") (must be finite); reduce the time step or check the set-up";
+      throw Error(message.str());
+    }
+  }
+
+  // --- access -----------------------------------------------------------------------------
+  store_type& particles() {
+    return particles_;
+  }
+  const store_type& particles() const {
+    return particles_;
+  }
+  const NodeFields& nodes() const {
+    return nodes_;
+  }
+  const grid::Grid<Dim>& grid() const {
+    return grid_;
+  }
+  grid::BoundaryConditions<Dim>& boundary_conditions() {
+    return boundary_;
+  }
+  const grid::BoundaryConditions<Dim>& boundary_conditions() const {
+    return boundary_;
+  }
+  const model_type& model() const {
+    return model_;
+  }
+  const SimulationParameters<Dim>& parameters() const {
+    return parameters_;
+  }
+  double time() const {
+    return time_;
+  }
+  std::int64_t step_count() const {
+    return step_count_;
+  }
+  int threads() const {
+    return threads_;
+  }
+  // For restarts: the clock is part of the checkpointed state.
+  void set_clock(double time, std::int64_t step_count) {
+    time_ = time;
+    step_count_ = step_count;
+  }
+
+ private:
+  void clear_nodes(bool with_forces) {
+    std::fill(nodes_.mass.begin(), nodes_.mass.end(), 0.0);
+    std::fill(nodes_.momentum.begin(), nodes_.momentum.end(), Vec<Dim>::Zero());
+    if (with_forces)
+      std::fill(nodes_.force.begin(), nodes_.force.end(), Vec<Dim>::Zero());
+  }
+
+  double empty_node_mass() const {
+    return parameters_.empty_node_mass_fraction * typical_particle_mass_;
+  }
+
+  void grid_velocity_from_momentum() {
+    const double empty = empty_node_mass();
+    for (Index n = 0; n < grid_.node_count(); ++n) {
+      if (nodes_.mass[n] <= empty) {
+        nodes_.momentum[n].setZero();
+        continue;
+      }
+      nodes_.momentum[n] /= nodes_.mass[n];
+      apply_boundary_conditions(n, nodes_.momentum[n]);
+    }
+  }
+
+  void apply_boundary_conditions(Index node, Vec<Dim>& velocity) const {
+    const auto ijk = grid_.node_ijk(node);
+    for (int axis = 0; axis < Dim; ++axis) {
+      if (ijk[axis] == 0) {
+        grid::BoundaryConditions<Dim>::apply(boundary_[2 * axis], axis, false, velocity);
+      }
+      if (ijk[axis] == grid_.nodes(axis) - 1) {
+        grid::BoundaryConditions<Dim>::apply(boundary_[2 * axis + 1], axis, true, velocity);
+      }
+    }
+  }
+
+  // Counting sort of particles into blocks of cells; remembers the stencil positions of the
+  // start of the step (MUSL and USF evaluate gradients there).
+  void bucket_particles() {
+    const auto& x = particles_.template get<particles::field::Position<Dim>>();
+    const Index count = particles_.size();
+    particle_block_.resize(count);
+    order_.resize(count);
+    stencil_positions_ = x;
+    std::fill(block_start_.begin(), block_start_.end(), 0);
+    for (Index p = 0; p < count; ++p) {
+      const Vec<Dim> xi = grid_.to_cell_units(x[p]);
+      Index block = 0;
+      for (int d = Dim - 1; d >= 0; --d) {
+        Index b = static_cast<Index>(xi[d]) / detail::ParticleBlocks::block_cells;
+        b = std::clamp<Index>(b, 0, blocks_per_axis_[d] - 1);
+        block = block * blocks_per_axis_[d] + b;
+      }
+      particle_block_[p] = block;
+      ++block_start_[block + 1];
+    }
+    for (std::size_t b = 1; b < block_start_.size(); ++b)
+      block_start_[b] += block_start_[b - 1];
+    block_fill_.assign(block_start_.begin(), block_start_.end() - 1);
+    for (Index p = 0; p < count; ++p)
+      order_[block_fill_[particle_block_[p]]++] = p;
+  }
+
+  // Runs f(p) over all particles; blocks of one colour run in parallel, colours in order,
+  // particles within a block in index order: the sum at every node is taken in the same
+  // order whatever the thread count.
+  template <class F>
+  void for_each_particle_coloured(F&& f) {
+    const Index block_total = static_cast<Index>(block_start_.size()) - 1;
+    for (int colour = 0; colour < (1 << Dim); ++colour) {
+      COSMPM_OMP_PARALLEL_FOR(threads_)
+      for (Index block = 0; block < block_total; ++block) {
+        if (block_colour(block) != colour)
+          continue;
+        for (Index i = block_start_[block]; i < block_start_[block + 1]; ++i)
+          f(order_[i]);
+      }
+    }
+  }
+
+  int block_colour(Index block) const {
+    int colour = 0;
+    for (int d = 0; d < Dim; ++d) {
+      colour |= static_cast<int>((block % blocks_per_axis_[d]) & 1) << d;
+      block /= blocks_per_axis_[d];
+    }
+    return colour;
+  }
+
+  grid::Grid<Dim> grid_;
+  model_type model_;
+  SimulationParameters<Dim> parameters_;
+  grid::BoundaryConditions<Dim> boundary_;
+  store_type particles_;
+  NodeFields nodes_;
+  int threads_ = 1;
+  double time_ = 0.0;
+  std::int64_t step_count_ = 0;
+  double typical_particle_mass_ = 0.0;
+  double max_density_ = 0.0;
+  std::array<Index, Dim> blocks_per_axis_{};
+  std::vector<Index> block_start_;
+  std::vector<Index> block_fill_;
+  std::vector<Index> particle_block_;
+  std::vector<Index> order_;
+  std::vector<Vec<Dim>> stencil_positions_;
+};
+
+}  // namespace cosmpm

@@ -1,0 +1,41 @@
+#!/usr/bin/env bash
+# Sets up, builds and runs every check: clang-format, a Release build of tests, examples,
+# benchmarks and the header check, an ASan+UBSan test build, and the consumer project built
+# against the installed package and through add_subdirectory.
+set -euo pipefail
+root=$(cd "$(dirname "$0")/.." && pwd)
+cd "$root"
+jobs=${COSMPM_JOBS:-2}
+"$root/scripts/setup.sh"
+
+echo "== clang-format" >&2
+mapfile -t sources < <(git ls-files '*.hpp' '*.cpp' 2>/dev/null || find include tests examples benchmarks -name '*.[hc]pp')
+clang-format --dry-run -Werror "${sources[@]}"
+
+echo "== Release build" >&2
+cmake -S . -B build/release -G Ninja -DCMAKE_BUILD_TYPE=Release \
+  -DCOSMPM_BUILD_TESTS=ON -DCOSMPM_BUILD_EXAMPLES=ON -DCOSMPM_BUILD_BENCHMARKS=ON \
+  -DCOSMPM_HEADER_CHECK=ON -DCMAKE_INSTALL_PREFIX="$root/build/install" >/dev/null
+cmake --build build/release -j "$jobs"
+ctest --test-dir build/release -j "$jobs" --output-on-failure
+
+echo "== ASan + UBSan build" >&2
+cmake -S . -B build/sanitize -G Ninja -DCMAKE_BUILD_TYPE=RelWithDebInfo -DCOSMPM_SANITIZE=ON \
+  -DCOSMPM_BUILD_TESTS=ON -DCOSMPM_BUILD_EXAMPLES=OFF -DCOSMPM_HEADER_CHECK=OFF >/dev/null
+cmake --build build/sanitize -j "$jobs"
+ASAN_OPTIONS=detect_leaks=1 UBSAN_OPTIONS=print_stacktrace=1:halt_on_error=1 \
+  ctest --test-dir build/sanitize -j "$jobs" --output-on-failure
+
+echo "== consumer project: find_package and add_subdirectory" >&2
+rm -rf build/install
+cmake --install build/release >/dev/null
+cmake -S tests/consumer -B build/consumer-installed -G Ninja -DCMAKE_BUILD_TYPE=Release \
+  -DCOSMPM_CONSUMER_MODE=find_package -DCMAKE_PREFIX_PATH="$root/build/install" >/dev/null
+cmake --build build/consumer-installed -j "$jobs"
+./build/consumer-installed/cosmpm_consumer
+cmake -S tests/consumer -B build/consumer-subdirectory -G Ninja -DCMAKE_BUILD_TYPE=Release \
+  -DCOSMPM_CONSUMER_MODE=add_subdirectory -DCOSMPM_SOURCE_DIR="$root" >/dev/null
+cmake --build build/consumer-subdirectory -j "$jobs"
+./build/consumer-subdirectory/cosmpm_consumer
+
+echo "== all checks passed" >&2
