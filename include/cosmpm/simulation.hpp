@@ -111,8 +111,7 @@ class Simulation {
                             detail::ParticleBlocks::block_cells;
     }
     Index block_total = 1;
-    for (int d = 0; d < Dim; ++d)
-      block_total *= blocks_per_axis_[d];
+    for (int d = 0; d < Dim; ++d) block_total *= blocks_per_axis_[d];
     block_start_.assign(block_total + 1, 0);
   }
 
@@ -173,8 +172,7 @@ class Simulation {
   // The step the run uses: the requested one, checked against the stable one.
   double time_step() const {
     const double stable = stable_time_step();
-    if (parameters_.time_step == 0.0)
-      return parameters_.cfl * stable;
+    if (parameters_.time_step == 0.0) return parameters_.cfl * stable;
     if (parameters_.time_step > stable && !parameters_.allow_unstable_time_step) {
       throw Error(
           "SimulationParameters: time_step = " + detail::format_number(parameters_.time_step) +
@@ -485,8 +483,7 @@ class Simulation {
   void clear_nodes(bool with_forces) {
     std::fill(nodes_.mass.begin(), nodes_.mass.end(), 0.0);
     std::fill(nodes_.momentum.begin(), nodes_.momentum.end(), Vec<Dim>::Zero());
-    if (with_forces)
-      std::fill(nodes_.force.begin(), nodes_.force.end(), Vec<Dim>::Zero());
+    if (with_forces) std::fill(nodes_.force.begin(), nodes_.force.end(), Vec<Dim>::Zero());
   }
 
   double empty_node_mass() const {
@@ -537,11 +534,9 @@ class Simulation {
       particle_block_[p] = block;
       ++block_start_[block + 1];
     }
-    for (std::size_t b = 1; b < block_start_.size(); ++b)
-      block_start_[b] += block_start_[b - 1];
+    for (std::size_t b = 1; b < block_start_.size(); ++b) block_start_[b] += block_start_[b - 1];
     block_fill_.assign(block_start_.begin(), block_start_.end() - 1);
-    for (Index p = 0; p < count; ++p)
-      order_[block_fill_[particle_block_[p]]++] = p;
+    for (Index p = 0; p < count; ++p) order_[block_fill_[particle_block_[p]]++] = p;
   }
 
   // Runs f(p) over all particles; blocks of one colour run in parallel, colours in order,
@@ -553,10 +548,8 @@ class Simulation {
     for (int colour = 0; colour < (1 << Dim); ++colour) {
       COSMPM_OMP_PARALLEL_FOR(threads_)
       for (Index block = 0; block < block_total; ++block) {
-        if (block_colour(block) != colour)
-          continue;
-        for (Index i = block_start_[block]; i < block_start_[block + 1]; ++i)
-          f(order_[i]);
+        if (block_colour(block) != colour) continue;
+        for (Index i = block_start_[block]; i < block_start_[block + 1]; ++i) f(order_[i]);
       }
     }
   }

@@ -27,9 +27,8 @@ TEST_CASE("require_in_range names the value, the range and the source") {
   CHECK_THROWS_AS(cosmpm::require_in_range("x", "v", std::nan(""), 0.0, 1.0, Bounds::closed),
                   cosmpm::Error);
   CHECK_THROWS_AS(cosmpm::require_positive("x", "E", 0.0), cosmpm::Error);
-  CHECK_THROWS_AS(
-      cosmpm::require_positive("x", "E", std::numeric_limits<double>::infinity()),
-      cosmpm::Error);
+  CHECK_THROWS_AS(cosmpm::require_positive("x", "E", std::numeric_limits<double>::infinity()),
+                  cosmpm::Error);
   CHECK_THROWS_AS(cosmpm::require_non_negative("x", "c", -1e-12), cosmpm::Error);
   CHECK_NOTHROW(cosmpm::require_non_negative("x", "c", 0.0));
 }

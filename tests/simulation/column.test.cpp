@@ -42,8 +42,7 @@ ColumnErrors column_errors(Index cells_over_height) {
   const double dt = sim.time_step();
   const double wave_transit = height / std::sqrt(modulus / density);
   const int steps = static_cast<int>(std::ceil(120.0 * wave_transit / dt));
-  for (int i = 0; i < steps; ++i)
-    sim.step(dt);
+  for (int i = 0; i < steps; ++i) sim.step(dt);
 
   const auto& x0 = sim.particles().template get<particles::field::InitialPosition<2>>();
   const auto& x = sim.particles().template get<particles::field::Position<2>>();
@@ -54,8 +53,7 @@ ColumnErrors column_errors(Index cells_over_height) {
   for (Index p = 0; p < sim.particles().size(); ++p) {
     const double exact = -density * gravity * (height - x0[p][1]);
     errors.stress = std::max(errors.stress, std::abs(stress[p][1] - exact) / scale);
-    if (x0[p][1] > x0[top][1])
-      top = p;
+    if (x0[p][1] > x0[top][1]) top = p;
   }
   const double y = x0[top][1];
   const double exact_settlement = density * gravity * (height * y - 0.5 * y * y) / modulus;

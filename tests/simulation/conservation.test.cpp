@@ -28,8 +28,7 @@ void check_transfer_conservation() {
   }
   sim.map_to_grid(true);
   double particle_mass = 0.0;
-  for (double m : sim.particles().template get<particles::field::Mass>())
-    particle_mass += m;
+  for (double m : sim.particles().template get<particles::field::Mass>()) particle_mass += m;
   double node_mass = 0.0;
   Vec<2> node_momentum = Vec<2>::Zero();
   Vec<2> node_force = Vec<2>::Zero();

@@ -69,8 +69,7 @@ TEST_CASE("a particle leaving the grid stops the run with its index and position
   v[3] = Vec<2>(0.0, -500.0);  // crosses the bottom face within one step
   const double dt = sim.time_step();
   std::string message;
-  for (int i = 0; i < 10 && message.empty(); ++i)
-    message = error_of([&] { sim.step(dt); });
+  for (int i = 0; i < 10 && message.empty(); ++i) message = error_of([&] { sim.step(dt); });
   CHECK(message.find("left the grid") != std::string::npos);
 }
 

@@ -19,8 +19,7 @@ double kinetic_energy(const Sim& sim) {
   const auto& v = sim.particles().template get<particles::field::Velocity<2>>();
   const auto& m = sim.particles().template get<particles::field::Mass>();
   double energy = 0.0;
-  for (Index p = 0; p < sim.particles().size(); ++p)
-    energy += 0.5 * m[p] * v[p].squaredNorm();
+  for (Index p = 0; p < sim.particles().size(); ++p) energy += 0.5 * m[p] * v[p].squaredNorm();
   return energy;
 }
 
@@ -44,8 +43,7 @@ Vec<2> total_momentum(const Sim& sim) {
   const auto& v = sim.particles().template get<particles::field::Velocity<2>>();
   const auto& m = sim.particles().template get<particles::field::Mass>();
   Vec<2> momentum = Vec<2>::Zero();
-  for (Index p = 0; p < sim.particles().size(); ++p)
-    momentum += m[p] * v[p];
+  for (Index p = 0; p < sim.particles().size(); ++p) momentum += m[p] * v[p];
   return momentum;
 }
 
@@ -59,8 +57,7 @@ inline double period_from_zero_crossings(const std::vector<double>& signal, doub
       crossings.push_back((static_cast<double>(i - 1) + fraction) * dt);
     }
   }
-  if (crossings.size() < 2)
-    return std::nan("");
+  if (crossings.size() < 2) return std::nan("");
   return (crossings.back() - crossings.front()) / static_cast<double>(crossings.size() - 1);
 }
 

@@ -34,8 +34,7 @@ inline void require_in_range(std::string_view where, std::string_view name, doub
       (bounds == Bounds::closed || bounds == Bounds::left_closed) ? value >= lo : value > lo;
   const bool hi_ok =
       (bounds == Bounds::closed || bounds == Bounds::right_closed) ? value <= hi : value < hi;
-  if (lo_ok && hi_ok && std::isfinite(value))
-    return;
+  if (lo_ok && hi_ok && std::isfinite(value)) return;
   const char left = (bounds == Bounds::closed || bounds == Bounds::left_closed) ? '[' : '(';
   const char right = (bounds == Bounds::closed || bounds == Bounds::right_closed) ? ']' : ')';
   throw Error(std::string(where) + ": " + std::string(name) + " = " + detail::format_number(value) +
@@ -44,22 +43,19 @@ inline void require_in_range(std::string_view where, std::string_view name, doub
 }
 
 inline void require_positive(std::string_view where, std::string_view name, double value) {
-  if (value > 0.0 && std::isfinite(value))
-    return;
+  if (value > 0.0 && std::isfinite(value)) return;
   throw Error(std::string(where) + ": " + std::string(name) + " = " + detail::format_number(value) +
               " must be positive and finite (valid range (0, inf))");
 }
 
 inline void require_non_negative(std::string_view where, std::string_view name, double value) {
-  if (value >= 0.0 && std::isfinite(value))
-    return;
+  if (value >= 0.0 && std::isfinite(value)) return;
   throw Error(std::string(where) + ": " + std::string(name) + " = " + detail::format_number(value) +
               " must be non-negative and finite (valid range [0, inf))");
 }
 
 inline void require(bool condition, std::string_view message) {
-  if (!condition)
-    throw Error(std::string(message));
+  if (!condition) throw Error(std::string(message));
 }
 
 }  // namespace cosmpm

@@ -53,22 +53,18 @@ class BoundaryConditions {
       case BoundaryKind::friction: {
         // Outward normal: -e_axis at the lower face, +e_axis at the upper one.
         const double outward = upper ? v[axis] : -v[axis];
-        if (outward <= 0.0)
-          return;  // separating: free
+        if (outward <= 0.0) return;  // separating: free
         v[axis] = 0.0;
         double tangential_norm = 0.0;
         for (int d = 0; d < Dim; ++d) {
-          if (d != axis)
-            tangential_norm += v[d] * v[d];
+          if (d != axis) tangential_norm += v[d] * v[d];
         }
         tangential_norm = std::sqrt(tangential_norm);
-        if (tangential_norm == 0.0)
-          return;
+        if (tangential_norm == 0.0) return;
         const double allowed = condition.friction_coefficient * outward;
         const double scale = tangential_norm > allowed ? 1.0 - allowed / tangential_norm : 0.0;
         for (int d = 0; d < Dim; ++d) {
-          if (d != axis)
-            v[d] *= scale;
+          if (d != axis) v[d] *= scale;
         }
         return;
       }

@@ -31,8 +31,7 @@ class Grid {
       nodes_[d] = cells[d] + 1;
     }
     node_total_ = 1;
-    for (int d = 0; d < Dim; ++d)
-      node_total_ *= nodes_[d];
+    for (int d = 0; d < Dim; ++d) node_total_ *= nodes_[d];
   }
 
   const Vec<Dim>& origin() const { return origin_; }
@@ -40,8 +39,7 @@ class Grid {
   const Vec<Dim>& inverse_cell_size() const { return inv_cell_size_; }
   Vec<Dim> extent() const {
     Vec<Dim> e;
-    for (int d = 0; d < Dim; ++d)
-      e[d] = cell_size_[d] * static_cast<double>(cells_[d]);
+    for (int d = 0; d < Dim; ++d) e[d] = cell_size_[d] * static_cast<double>(cells_[d]);
     return e;
   }
   Index cells(int axis) const { return cells_[axis]; }
@@ -49,16 +47,14 @@ class Grid {
   Index node_count() const { return node_total_; }
   double cell_volume() const {
     double v = 1.0;
-    for (int d = 0; d < Dim; ++d)
-      v *= cell_size_[d];
+    for (int d = 0; d < Dim; ++d) v *= cell_size_[d];
     return v;
   }
   double min_cell_size() const { return cell_size_.minCoeff(); }
 
   Index node_index(const std::array<Index, Dim>& ijk) const {
     Index index = 0;
-    for (int d = Dim - 1; d >= 0; --d)
-      index = index * nodes_[d] + ijk[d];
+    for (int d = Dim - 1; d >= 0; --d) index = index * nodes_[d] + ijk[d];
     return index;
   }
   std::array<Index, Dim> node_ijk(Index index) const {
@@ -72,8 +68,7 @@ class Grid {
   Vec<Dim> node_position(Index index) const {
     const auto ijk = node_ijk(index);
     Vec<Dim> x;
-    for (int d = 0; d < Dim; ++d)
-      x[d] = origin_[d] + cell_size_[d] * static_cast<double>(ijk[d]);
+    for (int d = 0; d < Dim; ++d) x[d] = origin_[d] + cell_size_[d] * static_cast<double>(ijk[d]);
     return x;
   }
   // Position in cell units from the origin: node k of axis d sits at k.
@@ -84,8 +79,7 @@ class Grid {
   bool contains(const Vec<Dim>& x) const {
     for (int d = 0; d < Dim; ++d) {
       const double xi = (x[d] - origin_[d]) * inv_cell_size_[d];
-      if (!(xi > 0.0 && xi < static_cast<double>(cells_[d])))
-        return false;
+      if (!(xi > 0.0 && xi < static_cast<double>(cells_[d]))) return false;
     }
     return true;
   }

@@ -19,32 +19,31 @@ concept OutputState = requires(const S& state) {
 };
 
 template <class M>
-concept ConstitutiveModel =
-    requires(const M& model, typename M::stress_type& stress, typename M::state_type& state,
-             const typename M::strain_type& strain_increment) {
-      typename M::scalar_type;
-      typename M::stress_type;
-      typename M::strain_type;
-      typename M::state_type;
-      // Stress in, stress out: `stress` holds the stress at the start of the increment.
-      { model.update(stress, state, strain_increment) } -> std::same_as<void>;
-      // Stiffest wave modulus (p-wave, constrained) for the stable time step.
-      { model.p_wave_modulus() } -> std::convertible_to<typename M::scalar_type>;
-      { model.shear_modulus() } -> std::convertible_to<typename M::scalar_type>;
-      { M::is_cosserat } -> std::convertible_to<bool>;
-    } && std::is_trivially_copyable_v<typename M::state_type> &&
-    OutputState<typename M::state_type>;
+concept ConstitutiveModel = requires(const M& model, typename M::stress_type& stress,
+                                     typename M::state_type& state,
+                                     const typename M::strain_type& strain_increment) {
+  typename M::scalar_type;
+  typename M::stress_type;
+  typename M::strain_type;
+  typename M::state_type;
+  // Stress in, stress out: `stress` holds the stress at the start of the increment.
+  { model.update(stress, state, strain_increment) } -> std::same_as<void>;
+  // Stiffest wave modulus (p-wave, constrained) for the stable time step.
+  { model.p_wave_modulus() } -> std::convertible_to<typename M::scalar_type>;
+  { model.shear_modulus() } -> std::convertible_to<typename M::scalar_type>;
+  { M::is_cosserat } -> std::convertible_to<bool>;
+}
+&&std::is_trivially_copyable_v<typename M::state_type>&& OutputState<typename M::state_type>;
 
 // A model that also gives the algorithmic (consistent) tangent d(stress)/d(strain increment),
 // for implicit solvers. Layout: tangent(i, j) = d stress[i] / d strain_increment[j].
 template <class M>
-concept HasConsistentTangent =
-    ConstitutiveModel<M> &&
+concept HasConsistentTangent = ConstitutiveModel<M> &&
     requires(const M& model, typename M::stress_type& stress, typename M::state_type& state,
              const typename M::strain_type& strain_increment, typename M::tangent_type& tangent) {
-      typename M::tangent_type;
-      { model.update(stress, state, strain_increment, tangent) } -> std::same_as<void>;
-    };
+  typename M::tangent_type;
+  { model.update(stress, state, strain_increment, tangent) } -> std::same_as<void>;
+};
 
 // State of a model without internal variables.
 struct NoState {

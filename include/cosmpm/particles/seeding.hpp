@@ -45,8 +45,7 @@ Seeding<Dim> empty_seeding(const grid::Grid<Dim>& g, int per_cell, const char* w
   require_in_range(where, "particles_per_cell_per_axis", per_cell, 1, 16, Bounds::closed);
   Seeding<Dim> seeding;
   seeding.volume = g.cell_volume();
-  for (int d = 0; d < Dim; ++d)
-    seeding.volume /= per_cell;
+  for (int d = 0; d < Dim; ++d) seeding.volume /= per_cell;
   seeding.half_width = Vec<Dim>::Constant(0.5 / per_cell);
   return seeding;
 }
@@ -66,8 +65,7 @@ Seeding<Dim> seed_box(const grid::Grid<Dim>& g, const Vec<Dim>& lower, const Vec
   }
   detail::for_each_subcell_centre(g, per_cell, [&](const Vec<Dim>& x) {
     for (int d = 0; d < Dim; ++d) {
-      if (x[d] < lower[d] || x[d] > upper[d])
-        return;
+      if (x[d] < lower[d] || x[d] > upper[d]) return;
     }
     seeding.positions.push_back(x);
   });
@@ -97,8 +95,7 @@ inline Seeding<2> seed_polygon(const grid::Grid<2>& g, const std::vector<Vec<2>>
                    Bounds::closed);
   auto seeding = detail::empty_seeding(g, per_cell, "seed_polygon");
   detail::for_each_subcell_centre(g, per_cell, [&](const Vec<2>& x) {
-    if (inside_polygon(polygon, x))
-      seeding.positions.push_back(x);
+    if (inside_polygon(polygon, x)) seeding.positions.push_back(x);
   });
   require(!seeding.positions.empty(), "seed_polygon: the polygon holds no sub-cell centre");
   return seeding;
@@ -110,8 +107,7 @@ inline Seeding<2> seed_disk(const grid::Grid<2>& g, const Vec<2>& centre, double
   require_positive("seed_disk", "radius", radius);
   auto seeding = detail::empty_seeding(g, per_cell, "seed_disk");
   detail::for_each_subcell_centre(g, per_cell, [&](const Vec<2>& x) {
-    if ((x - centre).squaredNorm() <= radius * radius)
-      seeding.positions.push_back(x);
+    if ((x - centre).squaredNorm() <= radius * radius) seeding.positions.push_back(x);
   });
   require(!seeding.positions.empty(), "seed_disk: the disk holds no sub-cell centre");
   return seeding;

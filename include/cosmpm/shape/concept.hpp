@@ -3,10 +3,10 @@
 // weights are its tensor product (shape/stencil.hpp).
 //
 // Kernel::evaluate(xi, half_width, node_count, weights, gradients) -> first node index
-//   xi          position in cell units along the axis (node k sits at xi = k), 0 < xi < node_count - 1
-//   half_width  particle half-size in cell units (GIMP uses it, others ignore it)
-//   node_count  nodes along the axis (boundary-modified splines need it)
-//   weights[k], gradients[k]: N and dN/dxi of node first + k, k < Kernel::support.
+//   xi          position in cell units along the axis (node k sits at xi = k), 0 < xi < node_count
+//   - 1 half_width  particle half-size in cell units (GIMP uses it, others ignore it) node_count
+//   nodes along the axis (boundary-modified splines need it) weights[k], gradients[k]: N and dN/dxi
+//   of node first + k, k < Kernel::support.
 // Contract: 0 <= first <= node_count - support; nodes outside the grid never receive weight.
 #include <array>
 #include <concepts>
