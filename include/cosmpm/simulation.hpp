@@ -85,8 +85,11 @@ class Simulation {
   };
 
   Simulation(const grid::Grid<Dim>& background, const model_type& model,
-             const SimulationParameters<Dim>& parameters = {})
-      : grid_(background), model_(model), parameters_(parameters) {
+             const SimulationParameters<Dim>& parameters = {}, Contact contact_law = {})
+      : grid_(background),
+        model_(model),
+        parameters_(parameters),
+        contact_(std::move(contact_law)) {
     require_in_range("SimulationParameters", "flip_fraction", parameters.flip_fraction, 0.0, 1.0,
                      Bounds::closed);
     require_in_range("SimulationParameters", "damping", parameters.damping, 0.0, 1.0,
@@ -188,6 +191,7 @@ class Simulation {
   // Advances one step of size dt and returns the new time.
   double step(double dt) {
     require_positive("Simulation::step", "dt", dt);
+    current_dt_ = dt;
     if constexpr (Scheme::scheme == integrator::Scheme::usf) {
       map_to_grid(/*with_forces=*/false);
       grid_velocity_from_momentum();
@@ -210,6 +214,7 @@ class Simulation {
       velocity_gradient_from_grid(nodes_.velocity);
       update_stress(dt);
     }
+    contact_.advance(dt, time_);
     time_ += dt;
     ++step_count_;
     return time_;
@@ -292,7 +297,6 @@ class Simulation {
       if (m <= empty) {
         nodes_.momentum[n].setZero();
         nodes_.velocity[n].setZero();
-        nodes_.acceleration[n].setZero();
         continue;
       }
       const Vec<Dim> v_start = nodes_.momentum[n] / m;
@@ -304,13 +308,17 @@ class Simulation {
           force[d] -= damping * std::abs(force[d]) * sign;
         }
       }
-      Vec<Dim> v_end = v_start + dt * force / m;
-      Vec<Dim> v_begin = v_start;
-      apply_boundary_conditions(n, v_begin);
-      apply_boundary_conditions(n, v_end);
-      nodes_.momentum[n] = v_begin;
-      nodes_.velocity[n] = v_end;
-      nodes_.acceleration[n] = (v_end - v_begin) / dt;
+      nodes_.momentum[n] = v_start;
+      nodes_.velocity[n] = v_start + dt * force / m;
+    }
+    // Contact acts on the updated velocity only, so the acceleration (and through FLIP the
+    // particles) carries its impulse; boundary conditions come last and win.
+    correct_contact(nodes_.velocity, dt, contact::Phase::end_velocity);
+    COSMPM_OMP_PARALLEL_FOR(threads_)
+    for (Index n = 0; n < count; ++n) {
+      apply_boundary_conditions(n, nodes_.momentum[n]);
+      apply_boundary_conditions(n, nodes_.velocity[n]);
+      nodes_.acceleration[n] = (nodes_.velocity[n] - nodes_.momentum[n]) / dt;
     }
   }
 
@@ -382,8 +390,9 @@ class Simulation {
         continue;
       }
       nodes_.velocity[n] /= nodes_.mass[n];
-      apply_boundary_conditions(n, nodes_.velocity[n]);
     }
+    correct_contact(nodes_.velocity, current_dt_, contact::Phase::remapped_velocity);
+    for (Index n = 0; n < grid_.node_count(); ++n) apply_boundary_conditions(n, nodes_.velocity[n]);
   }
 
   // Stage 4a: particle velocity gradient from a nodal velocity field, at the stencils of the
@@ -498,8 +507,14 @@ class Simulation {
         continue;
       }
       nodes_.momentum[n] /= nodes_.mass[n];
-      apply_boundary_conditions(n, nodes_.momentum[n]);
     }
+    correct_contact(nodes_.momentum, current_dt_, contact::Phase::start_velocity);
+    for (Index n = 0; n < grid_.node_count(); ++n) apply_boundary_conditions(n, nodes_.momentum[n]);
+  }
+
+  void correct_contact(std::vector<Vec<Dim>>& velocity, double dt, contact::Phase phase) {
+    contact::GridView<Dim> view{grid_, nodes_.mass, velocity, empty_node_mass(), dt, time_, phase};
+    contact_.correct(view);
   }
 
   void apply_boundary_conditions(Index node, Vec<Dim>& velocity) const {
@@ -567,6 +582,8 @@ class Simulation {
   model_type model_;
   SimulationParameters<Dim> parameters_;
   grid::BoundaryConditions<Dim> boundary_;
+  Contact contact_;
+  double current_dt_ = 0.0;
   store_type particles_;
   NodeFields nodes_;
   int threads_ = 1;

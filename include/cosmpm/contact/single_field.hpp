@@ -1,9 +1,39 @@
 #pragma once
 // The MPM default: one velocity field on the grid, so bodies stick where they touch.
+// It is also the reference for the contact-policy interface the simulation calls:
+//   correct(view)   adjusts nodal velocities after they are computed (and records forces
+//                   when view.phase == Phase::end_velocity),
+//   advance(dt, t)  moves whatever the law owns (rigid bodies) at the end of a step.
+#include <vector>
+
+#include "cosmpm/core/types.hpp"
+#include "cosmpm/grid/grid.hpp"
+
 namespace cosmpm::contact {
+
+enum class Phase {
+  start_velocity,     // v^t from the particles' momenta (USF strains with it)
+  end_velocity,       // v^{t+dt} after the momentum update: the contact impulse of the step
+  remapped_velocity,  // MUSL's v^{t+dt} remapped from the updated particles
+};
+
+// What a contact law sees of the grid: node masses and one velocity field to correct.
+template <int Dim>
+struct GridView {
+  const grid::Grid<Dim>& grid;
+  const std::vector<double>& mass;
+  std::vector<Vec<Dim>>& velocity;
+  double empty_mass;  // nodes at or below it hold no material
+  double dt;
+  double time;  // at the start of the step
+  Phase phase;
+};
 
 struct SingleField {
   static constexpr const char* name() { return "single-field no-slip"; }
+  template <int Dim>
+  void correct(GridView<Dim>& /*view*/) {}
+  void advance(double /*dt*/, double /*time*/) {}
 };
 
 }  // namespace cosmpm::contact
