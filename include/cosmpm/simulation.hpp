@@ -203,9 +203,7 @@ class Simulation {
     } else if constexpr (Scheme::scheme == integrator::Scheme::usl) {
       map_to_grid(/*with_forces=*/true);
       update_grid(dt);
-      map_to_particles(dt);
-      velocity_gradient_from_grid(nodes_.velocity);
-      update_stress(dt);
+      map_to_particles(dt, /*with_stress_update=*/true);
     } else {
       map_to_grid(/*with_forces=*/true);
       update_grid(dt);
@@ -238,7 +236,8 @@ class Simulation {
       const double mp = mass[p];
       const Vec<Dim> momentum = mp * v[p];
       if (with_forces) {
-        const double vp = vol[p];
+        // A local copy: node stores could alias the particle arrays, forcing reloads.
+        const stress_type volume_stress = vol[p] * stress[p];
         const Vec<Dim> weight_force = mp * gravity;
         for (int k = 0; k < stencil_type::size; ++k) {
           const Index n = s.node[k];
@@ -246,7 +245,7 @@ class Simulation {
           nodes_.mass[n] += w * mp;
           nodes_.momentum[n] += w * momentum;
           nodes_.force[n] +=
-              w * weight_force - vp * Continuum::stress_divergence_term(stress[p], s.gradient[k]);
+              w * weight_force - Continuum::stress_divergence_term(volume_stress, s.gradient[k]);
         }
       } else {
         for (int k = 0; k < stencil_type::size; ++k) {
@@ -323,51 +322,107 @@ class Simulation {
   }
 
   // Stage 3: particle velocity (PIC/FLIP blend) and position from the grid.
-  void map_to_particles(double dt) {
+  // USL fuses the velocity gradient and the stress update into this pass: one sweep over the
+  // particles instead of three, at the same (start-of-step) stencil.
+  void map_to_particles(double dt, bool with_stress_update = false) {
+    if (with_stress_update) {
+      map_to_particles_impl<true>(dt);
+    } else {
+      map_to_particles_impl<false>(dt);
+    }
+  }
+
+ private:
+  template <bool with_stress_update>
+  void map_to_particles_impl(double dt) {
+    auto& L = particles_.template get<particles::field::VelocityGradient<Dim>>();
     auto& x = particles_.template get<particles::field::Position<Dim>>();
     auto& v = particles_.template get<particles::field::Velocity<Dim>>();
     const auto& half = particles_.template get<particles::field::HalfWidth<Dim>>();
     const double flip = parameters_.flip_fraction;
     const Index count = particles_.size();
     Index first_outside = count;
+    Index first_bad = count;
     COSMPM_OMP_PARALLEL_FOR(threads_)
     for (Index p = 0; p < count; ++p) {
       stencil_type s;
       s.compute(grid_, x[p], half[p]);
       Vec<Dim> v_grid = Vec<Dim>::Zero();
       Vec<Dim> a_grid = Vec<Dim>::Zero();
+      Mat<Dim> gradient = Mat<Dim>::Zero();
       for (int k = 0; k < stencil_type::size; ++k) {
-        v_grid += s.weight[k] * nodes_.velocity[s.node[k]];
+        const Vec<Dim>& v_node = nodes_.velocity[s.node[k]];
+        v_grid += s.weight[k] * v_node;
         a_grid += s.weight[k] * nodes_.acceleration[s.node[k]];
+        if constexpr (with_stress_update) gradient.noalias() += v_node * s.gradient[k].transpose();
+      }
+      if constexpr (with_stress_update) {
+        L[p] = gradient;
+        if (!update_particle_stress(p, gradient, dt)) record_first(first_bad, p);
       }
       v[p] = flip * (v[p] + dt * a_grid) + (1.0 - flip) * v_grid;
       x[p] += dt * v_grid;
-      if (!grid_.contains(x[p])) {
-        // The lowest index is reported, so the message does not depend on the threads.
-#if defined(_OPENMP)
-#pragma omp critical(cosmpm_outside)
-#endif
-        first_outside = std::min(first_outside, p);
-      }
+      if (!grid_.contains(x[p])) record_first(first_outside, p);
     }
-    if (first_outside < count) {
-      std::ostringstream message;
-      const Index p = first_outside;
-      if (!x[p].allFinite() || !v[p].allFinite()) {
-        message << "Simulation: the run went unstable at step " << step_count_ << " (t = " << time_
-                << " s): particle " << p << " has position (" << x[p].transpose()
-                << ") and velocity (" << v[p].transpose()
-                << ") (must be finite); reduce the time step or check the set-up";
-      } else {
-        message << "Simulation: particle " << p << " at (" << x[p].transpose()
-                << ") left the grid box [" << grid_.origin().transpose() << "] + ["
-                << grid_.extent().transpose() << "] at step " << step_count_ << " (t = " << time_
-                << " s); the valid region is the open grid box";
-      }
-      throw Error(message.str());
-    }
+    // A particle that left the grid usually also tore its neighbourhood: name the cause.
+    if (first_outside < count) throw_outside(first_outside);
+    if (first_bad < count) throw_unstable_stress(first_bad);
   }
 
+  // Keeps the lowest index, so messages do not depend on the thread count.
+  static void record_first(Index& first, Index p) {
+#if defined(_OPENMP)
+#pragma omp critical(cosmpm_record_first)
+#endif
+    first = std::min(first, p);
+  }
+
+  // Constitutive update, deformation gradient and volume of one particle; false when the
+  // result is not physical (inverted volume or non-finite stress).
+  bool update_particle_stress(Index p, const Mat<Dim> L, double dt) {
+    auto& F = particles_.template get<particles::field::DeformationGradient<Dim>>()[p];
+    auto& stress = particles_.template get<particles::field::Stress<model_type>>()[p];
+    Continuum::update_stress(
+        model_, L, dt, stress,
+        particles_.template get<particles::field::MaterialState<model_type>>()[p],
+        particles_.template get<particles::field::Strain<model_type>>()[p]);
+    F = (Mat<Dim>::Identity() + dt * L) * F;
+    const double J = F.determinant();
+    particles_.template get<particles::field::Volume>()[p] =
+        J * particles_.template get<particles::field::InitialVolume>()[p];
+    return J > 0.0 && stress.allFinite();
+  }
+
+  void throw_unstable_stress(Index p) const {
+    const auto& F = particles_.template get<particles::field::DeformationGradient<Dim>>();
+    const auto& stress = particles_.template get<particles::field::Stress<model_type>>();
+    std::ostringstream message;
+    message << "Simulation: the run went unstable at step " << step_count_ << " (t = " << time_
+            << " s): particle " << p << " has volume ratio det(F) = " << F[p].determinant()
+            << " (valid range (0, inf)) and stress (" << stress[p].transpose()
+            << ") (must be finite); reduce the time step or check the set-up";
+    throw Error(message.str());
+  }
+
+  void throw_outside(Index p) const {
+    const auto& x = particles_.template get<particles::field::Position<Dim>>();
+    const auto& v = particles_.template get<particles::field::Velocity<Dim>>();
+    std::ostringstream message;
+    if (!x[p].allFinite() || !v[p].allFinite()) {
+      message << "Simulation: the run went unstable at step " << step_count_ << " (t = " << time_
+              << " s): particle " << p << " has position (" << x[p].transpose()
+              << ") and velocity (" << v[p].transpose()
+              << ") (must be finite); reduce the time step or check the set-up";
+    } else {
+      message << "Simulation: particle " << p << " at (" << x[p].transpose()
+              << ") left the grid box [" << grid_.origin().transpose() << "] + ["
+              << grid_.extent().transpose() << "] at step " << step_count_ << " (t = " << time_
+              << " s); the valid region is the open grid box";
+    }
+    throw Error(message.str());
+  }
+
+ public:
   // MUSL: map the updated particle momenta back to the grid (with the start-of-step stencils,
   // as the grid mass was) and use that velocity field for the strain rate.
   void remap_momentum() {
@@ -375,9 +430,10 @@ class Simulation {
     const auto& mass = particles_.template get<particles::field::Mass>();
     const auto& half = particles_.template get<particles::field::HalfWidth<Dim>>();
     std::fill(nodes_.velocity.begin(), nodes_.velocity.end(), Vec<Dim>::Zero());
+    const auto& start = start_positions();
     for_each_particle_coloured([&](Index p) {
       stencil_type s;
-      s.compute(grid_, stencil_positions_[p], half[p]);
+      s.compute(grid_, start[p], half[p]);
       const Vec<Dim> momentum = mass[p] * v[p];
       for (int k = 0; k < stencil_type::size; ++k) {
         nodes_.velocity[s.node[k]] += s.weight[k] * momentum;
@@ -398,13 +454,14 @@ class Simulation {
   // Stage 4a: particle velocity gradient from a nodal velocity field, at the stencils of the
   // start of the step.
   void velocity_gradient_from_grid(const std::vector<Vec<Dim>>& node_velocity) {
+    const auto& start = start_positions();
     auto& L = particles_.template get<particles::field::VelocityGradient<Dim>>();
     const auto& half = particles_.template get<particles::field::HalfWidth<Dim>>();
     const Index count = particles_.size();
     COSMPM_OMP_PARALLEL_FOR(threads_)
     for (Index p = 0; p < count; ++p) {
       stencil_type s;
-      s.compute(grid_, stencil_positions_[p], half[p]);
+      s.compute(grid_, start[p], half[p]);
       Mat<Dim> gradient = Mat<Dim>::Zero();
       for (int k = 0; k < stencil_type::size; ++k) {
         gradient.noalias() += node_velocity[s.node[k]] * s.gradient[k].transpose();
@@ -416,36 +473,13 @@ class Simulation {
   // Stage 4b: constitutive update, deformation gradient and volume.
   void update_stress(double dt) {
     const auto& L = particles_.template get<particles::field::VelocityGradient<Dim>>();
-    auto& F = particles_.template get<particles::field::DeformationGradient<Dim>>();
-    auto& vol = particles_.template get<particles::field::Volume>();
-    const auto& vol0 = particles_.template get<particles::field::InitialVolume>();
-    auto& stress = particles_.template get<particles::field::Stress<model_type>>();
-    auto& strain = particles_.template get<particles::field::Strain<model_type>>();
-    auto& state = particles_.template get<particles::field::MaterialState<model_type>>();
     const Index count = particles_.size();
     Index first_bad = count;
     COSMPM_OMP_PARALLEL_FOR(threads_)
     for (Index p = 0; p < count; ++p) {
-      Continuum::update_stress(model_, L[p], dt, stress[p], state[p], strain[p]);
-      F[p] = (Mat<Dim>::Identity() + dt * L[p]) * F[p];
-      const double J = F[p].determinant();
-      vol[p] = J * vol0[p];
-      if (!(J > 0.0) || !stress[p].allFinite()) {
-#if defined(_OPENMP)
-#pragma omp critical(cosmpm_bad)
-#endif
-        first_bad = std::min(first_bad, p);
-      }
+      if (!update_particle_stress(p, L[p], dt)) record_first(first_bad, p);
     }
-    if (first_bad < count) {
-      std::ostringstream message;
-      message << "Simulation: the run went unstable at step " << step_count_ << " (t = " << time_
-              << " s): particle " << first_bad
-              << " has volume ratio det(F) = " << F[first_bad].determinant()
-              << " (valid range (0, inf)) and stress (" << stress[first_bad].transpose()
-              << ") (must be finite); reduce the time step or check the set-up";
-      throw Error(message.str());
-    }
+    if (first_bad < count) throw_unstable_stress(first_bad);
   }
 
   // --- access -----------------------------------------------------------------------------
@@ -489,6 +523,15 @@ class Simulation {
   }
 
  private:
+  // Where the stencils of this step were evaluated: USL needs no copy, it maps before moving.
+  const std::vector<Vec<Dim>>& start_positions() const {
+    if constexpr (Scheme::scheme == integrator::Scheme::usl) {
+      return particles_.template get<particles::field::Position<Dim>>();
+    } else {
+      return stencil_positions_;
+    }
+  }
+
   void clear_nodes(bool with_forces) {
     std::fill(nodes_.mass.begin(), nodes_.mass.end(), 0.0);
     std::fill(nodes_.momentum.begin(), nodes_.momentum.end(), Vec<Dim>::Zero());
@@ -536,7 +579,7 @@ class Simulation {
     const Index count = particles_.size();
     particle_block_.resize(count);
     order_.resize(count);
-    stencil_positions_ = x;
+    if constexpr (Scheme::scheme != integrator::Scheme::usl) stencil_positions_ = x;
     std::fill(block_start_.begin(), block_start_.end(), 0);
     for (Index p = 0; p < count; ++p) {
       const Vec<Dim> xi = grid_.to_cell_units(x[p]);
