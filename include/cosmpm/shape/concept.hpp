@@ -3,11 +3,13 @@
 // weights are its tensor product (shape/stencil.hpp).
 //
 // Kernel::evaluate(xi, half_width, node_count, weights, gradients) -> first node index
-//   xi          position in cell units along the axis (node k sits at xi = k), 0 < xi < node_count
-//   - 1 half_width  particle half-size in cell units (GIMP uses it, others ignore it) node_count
-//   nodes along the axis (boundary-modified splines need it) weights[k], gradients[k]: N and dN/dxi
-//   of node first + k, k < Kernel::support.
+//   xi          position in cell units along the axis (node k sits at xi = k),
+//               0 <= xi <= node_count - 1 (the kernels of this library accept the closed range)
+//   half_width  particle half-size in cell units (GIMP uses it, others ignore it)
+//   node_count  nodes along the axis (boundary-modified splines need it), >= support
+//   weights[k], gradients[k]: N and dN/dxi of node first + k, k < Kernel::support.
 // Contract: 0 <= first <= node_count - support; nodes outside the grid never receive weight.
+// evaluate() does not check its inputs (it is the innermost loop); shape::Stencil does.
 #include <array>
 #include <concepts>
 
@@ -22,6 +24,14 @@ concept Kernel = requires(double xi, double half_width, Index node_count,
   { K::support } -> std::convertible_to<int>;
   { K::evaluate(xi, half_width, node_count, weights, gradients) } -> std::same_as<Index>;
   { K::name() } -> std::convertible_to<const char*>;
+};
+
+// Kernels that read the particle half-width declare the valid range of it in cell units,
+// (min_half_width, max_half_width]; shape::Stencil checks it.
+template <class K>
+concept UsesHalfWidth = Kernel<K> && requires {
+  { K::min_half_width } -> std::convertible_to<double>;
+  { K::max_half_width } -> std::convertible_to<double>;
 };
 
 }  // namespace cosmpm::shape

@@ -1,0 +1,39 @@
+#pragma once
+// Boundary treatment shared by the kernels whose support reaches past the grid edge.
+//
+// Near an edge an unmodified kernel gives weight to a ghost node one spacing outside the
+// grid. The ghost's nodal value is taken as the linear extrapolation of the two nodes next
+// to it, v_ghost = 2 v_edge - v_inner, so its weight N_g folds onto them:
+//   N_edge += 2 N_g,  N_inner -= N_g   (the same for the gradients).
+// Partition of unity and exact reproduction of linear fields survive the fold because both
+// sides agree on constants and linear functions; see docs/theory/mpm.md, "Shape functions".
+#include <array>
+#include <cstddef>
+
+namespace cosmpm::shape::detail {
+
+// The stencil starts one node below the grid (slot 0 is the ghost node -1); afterwards it
+// starts at node 0 and its last slot is empty.
+template <class T, std::size_t S>
+inline void fold_lower_ghost(std::array<T, S>& v) {
+  static_assert(S >= 3, "a folded stencil needs the ghost, the edge node and an inner node");
+  const T ghost = v[0];
+  for (std::size_t k = 0; k + 1 < S; ++k) v[k] = v[k + 1];
+  v[S - 1] = T(0);
+  v[0] += T(2) * ghost;
+  v[1] -= ghost;
+}
+
+// The stencil ends one node above the grid (slot S-1 is the ghost node node_count); afterwards
+// it ends at node node_count - 1 and its first slot is empty.
+template <class T, std::size_t S>
+inline void fold_upper_ghost(std::array<T, S>& v) {
+  static_assert(S >= 3, "a folded stencil needs the ghost, the edge node and an inner node");
+  const T ghost = v[S - 1];
+  for (std::size_t k = S - 1; k > 0; --k) v[k] = v[k - 1];
+  v[0] = T(0);
+  v[S - 1] += T(2) * ghost;
+  v[S - 2] -= ghost;
+}
+
+}  // namespace cosmpm::shape::detail

@@ -1,0 +1,140 @@
+#pragma once
+// The Dim-dimensional stencil of one particle: the tensor product of a 1D kernel along each
+// axis. It runs once per particle per transfer, so everything has compile-time trip counts
+// and lives on the stack.
+#include <array>
+#include <cstddef>
+#include <string>
+#include <utility>
+
+#include "cosmpm/core/error.hpp"
+#include "cosmpm/core/types.hpp"
+#include "cosmpm/grid/grid.hpp"
+#include "cosmpm/shape/concept.hpp"
+
+namespace cosmpm::shape {
+
+namespace detail {
+
+constexpr int int_pow(int base, int exponent) {
+  int result = 1;
+  for (int i = 0; i < exponent; ++i) result *= base;
+  return result;
+}
+
+// Relative slack on the far face for the round-off of (x - origin) / h.
+inline constexpr double position_round_off = 1e-12;
+
+// Reports why an axis of a stencil could not be evaluated. Kept out of line and cold so the
+// checks in the hot path cost one well-predicted branch per axis.
+template <class K>
+[[gnu::cold, gnu::noinline]] inline void throw_bad_stencil_input(int axis, double position,
+                                                                 double xi, double half_width,
+                                                                 Index node_count) {
+  const std::string where = std::string("shape::Stencil<") + K::name() + ">";
+  const std::string along = " along axis " + std::to_string(axis);
+  require_in_range(where, "grid node count" + along, static_cast<double>(node_count),
+                   static_cast<double>(K::support), 1e8, Bounds::closed);
+  const double last = static_cast<double>(node_count - 1);
+  if (!(xi >= 0.0 && xi <= last * (1.0 + position_round_off))) {
+    require_in_range(where,
+                     "particle position" + along + " in cell units from the grid origin (x = " +
+                         cosmpm::detail::format_number(position) + ")",
+                     xi, 0.0, last, Bounds::closed);
+  }
+  if constexpr (UsesHalfWidth<K>) {
+    require_in_range(where, "particle half-width in cell units" + along, half_width,
+                     K::min_half_width, K::max_half_width, Bounds::right_closed);
+  }
+  throw Error(where + ": invalid input" + along);  // unreachable unless the checks disagree
+}
+
+}  // namespace detail
+
+template <int Dim, Kernel K>
+struct Stencil {
+  static constexpr int dim = Dim;
+  static constexpr int support = K::support;
+  static constexpr int size = detail::int_pow(K::support, Dim);
+  using kernel_type = K;
+
+  // node[k]: linear grid node index (Grid::node_index numbering); weight[k]: N_k(x);
+  // gradient[k]: dN_k/dx in physical units. Slot k walks the stencil x fastest.
+  std::array<Index, size> node;
+  std::array<double, size> weight;
+  std::array<Vec<Dim>, size> gradient;
+
+  // x: particle position; half_width: particle half-size in cell units per axis (used by
+  // GIMP only). Throws cosmpm::Error if x lies outside the closed grid box, the grid has
+  // fewer nodes than the kernel's support along an axis, or GIMP's half-width is out of range.
+  void compute(const grid::Grid<Dim>& grid, const Vec<Dim>& x, const Vec<Dim>& half_width) {
+    std::array<std::array<double, support>, Dim> w;
+    std::array<std::array<double, support>, Dim> dw;
+    Index first_node = 0;
+    std::array<Index, Dim> stride;
+    Index axis_stride = 1;
+    for (int d = 0; d < Dim; ++d) {
+      const Index n = grid.nodes(d);
+      const double inv_h = grid.inverse_cell_size()[d];
+      const double last = static_cast<double>(n - 1);
+      double xi = (x[d] - grid.origin()[d]) * inv_h;
+      // A particle on the far face (e.g. at Grid::node_position of the last node) can land a
+      // few ulps past it after the scaling; that is round-off, not a particle outside.
+      bool valid = xi >= 0.0 && xi <= last * (1.0 + detail::position_round_off) && n >= support;
+      if constexpr (UsesHalfWidth<K>) {
+        valid = valid && half_width[d] > K::min_half_width && half_width[d] <= K::max_half_width;
+      }
+      if (!valid) [[unlikely]] {
+        detail::throw_bad_stencil_input<K>(d, x[d], xi, half_width[d], n);
+      }
+      xi = xi < last ? xi : last;
+      const Index first = K::evaluate(xi, half_width[d], n, w[d], dw[d]);
+      for (int k = 0; k < support; ++k) dw[d][k] *= inv_h;
+      stride[d] = axis_stride;
+      first_node += first * axis_stride;
+      axis_stride *= n;
+    }
+    fill(first_node, stride, w, dw, std::make_index_sequence<size>{});
+  }
+
+ private:
+  template <std::size_t... Slot>
+  void fill(Index first_node, const std::array<Index, Dim>& stride,
+            const std::array<std::array<double, support>, Dim>& w,
+            const std::array<std::array<double, support>, Dim>& dw, std::index_sequence<Slot...>) {
+    (fill_slot<static_cast<int>(Slot)>(first_node, stride, w, dw), ...);
+  }
+
+  // Slot k has the base-`support` digits (i_0, ..., i_{Dim-1}), i_0 fastest.
+  template <int Slot>
+  void fill_slot(Index first_node, const std::array<Index, Dim>& stride,
+                 const std::array<std::array<double, support>, Dim>& w,
+                 const std::array<std::array<double, support>, Dim>& dw) {
+    constexpr std::array<int, Dim> digit = [] {
+      std::array<int, Dim> digits{};
+      int rest = Slot;
+      for (int d = 0; d < Dim; ++d) {
+        digits[d] = rest % support;
+        rest /= support;
+      }
+      return digits;
+    }();
+    Index index = first_node;
+    double product = 1.0;
+    for (int d = 0; d < Dim; ++d) {
+      index += digit[d] * stride[d];
+      product *= w[d][digit[d]];
+    }
+    node[Slot] = index;
+    weight[Slot] = product;
+    for (int a = 0; a < Dim; ++a) {
+      double g = dw[a][digit[a]];
+      for (int d = 0; d < Dim; ++d) {
+        if (d != a) g *= w[d][digit[d]];
+      }
+      gradient[Slot][a] = g;
+    }
+  }
+};
+
+}  // namespace cosmpm::shape
