@@ -1,0 +1,125 @@
+#pragma once
+// Isotropic Cosserat (micropolar) elasticity in 2D plane strain after de Borst (1991).
+//
+// Component layout (CosseratTensor2D, tension positive):
+//   stress  [s_xx, s_yy, s_zz, s_xy, s_yx, m_31, m_32]
+//   strain  [e_xx, e_yy, e_zz, e_xy, e_yx, kappa_31, kappa_32]   (increments)
+// s_ij is the force per unit area in direction j on the face with normal x_i (first index = face
+// normal), so translational equilibrium reads d s_ij / d x_i + b_j = 0 and rotational equilibrium
+// d m_3i / d x_i + s_xy - s_yx = 0. The work-conjugate deformations are
+//   e_xx = du_x/dx, e_yy = du_y/dy, e_xy = du_y/dx - omega_3, e_yx = du_x/dy + omega_3,
+//   kappa_31 = d omega_3 / dx, kappa_32 = d omega_3 / dy,
+// with omega_3 the micro-rotation (counter-clockwise positive). When omega_3 equals the
+// continuum rotation (du_y/dx - du_x/dy) / 2, e_xy = e_yx = the tensor shear of SymTensor2D.
+// Elastic law:
+//   s_ij = lambda e_kk delta_ij + (G + Gc) e_ij + (G - Gc) e_ji,   m_3i = 2 G l^2 kappa_3i.
+// The power s_ij e_ij + m_3i kappa_3i is the plain dot product of the two 7-vectors.
+#include <Eigen/Core>
+#include <string_view>
+
+#include "cosmpm/core/error.hpp"
+#include "cosmpm/core/types.hpp"
+#include "cosmpm/material/concept.hpp"
+#include "cosmpm/material/detail/elastic_parameters.hpp"
+
+namespace cosmpm::material {
+
+namespace detail {
+
+// The elastic part shared by the Cosserat models.
+template <class T>
+struct CosseratElasticity {
+  IsotropicElasticity<T> iso;
+  T cosserat_shear{};  // Gc
+  T length{};          // l
+
+  CosseratElasticity(std::string_view where, T youngs_modulus, T poisson_ratio,
+                     T cosserat_shear_modulus, T characteristic_length)
+      : iso(isotropic_elasticity<T>(where, youngs_modulus, poisson_ratio)),
+        cosserat_shear(cosserat_shear_modulus),
+        length(characteristic_length) {
+    require_non_negative(where, "cosserat_shear_modulus",
+                         static_cast<double>(cosserat_shear_modulus));
+    require_positive(where, "characteristic_length", static_cast<double>(characteristic_length));
+  }
+
+  T bending_modulus() const { return 2 * iso.shear * length * length; }  // m = this * kappa
+
+  // The stiffest wave modulus: lambda + 2G, or G + Gc for the short shear waves that the
+  // micro-rotation cannot follow (larger than lambda + 2G for the paper's Gc = 2G, nu = 0.2).
+  T p_wave_modulus() const {
+    const T shear_wave = iso.shear + cosserat_shear;
+    return iso.p_wave() > shear_wave ? iso.p_wave() : shear_wave;
+  }
+
+  // stress += D de
+  template <class V>
+  void add_elastic(V& stress, const Eigen::Matrix<T, 7, 1>& de) const {
+    const T volumetric = iso.lambda * (de[0] + de[1] + de[2]);
+    const T g2 = 2 * iso.shear;
+    stress[0] += volumetric + g2 * de[0];
+    stress[1] += volumetric + g2 * de[1];
+    stress[2] += volumetric + g2 * de[2];
+    const T plus = iso.shear + cosserat_shear;
+    const T minus = iso.shear - cosserat_shear;
+    stress[3] += plus * de[3] + minus * de[4];
+    stress[4] += plus * de[4] + minus * de[3];
+    stress[5] += bending_modulus() * de[5];
+    stress[6] += bending_modulus() * de[6];
+  }
+
+  Eigen::Matrix<T, 7, 7> tangent() const {
+    Eigen::Matrix<T, 7, 7> d = Eigen::Matrix<T, 7, 7>::Zero();
+    d.template topLeftCorner<3, 3>().setConstant(iso.lambda);
+    for (int i = 0; i < 3; ++i) d(i, i) += 2 * iso.shear;
+    d(3, 3) = d(4, 4) = iso.shear + cosserat_shear;
+    d(3, 4) = d(4, 3) = iso.shear - cosserat_shear;
+    d(5, 5) = d(6, 6) = bending_modulus();
+    return d;
+  }
+};
+
+}  // namespace detail
+
+template <class T = double>
+class CosseratElastic {
+ public:
+  using scalar_type = T;
+  using stress_type = CosseratTensor2D<T>;
+  using strain_type = CosseratTensor2D<T>;
+  using state_type = NoState;
+  using tangent_type = Eigen::Matrix<T, 7, 7>;
+  static constexpr bool is_cosserat = true;
+
+  // E > 0 (Pa), -1 < nu < 0.5, Gc >= 0 (Pa), l > 0 (m).
+  CosseratElastic(T youngs_modulus, T poisson_ratio, T cosserat_shear_modulus,
+                  T characteristic_length)
+      : elastic_("CosseratElastic", youngs_modulus, poisson_ratio, cosserat_shear_modulus,
+                 characteristic_length) {}
+
+  T shear_modulus() const { return elastic_.iso.shear; }
+  T cosserat_shear_modulus() const { return elastic_.cosserat_shear; }
+  T characteristic_length() const { return elastic_.length; }
+  T lame_lambda() const { return elastic_.iso.lambda; }
+  T bulk_modulus() const { return elastic_.iso.bulk(); }
+  T p_wave_modulus() const { return elastic_.p_wave_modulus(); }
+  T bending_modulus() const { return elastic_.bending_modulus(); }
+
+  void update(stress_type& stress, state_type& /*state*/, const strain_type& de) const {
+    elastic_.add_elastic(stress, de);
+  }
+  void update(stress_type& stress, state_type& state, const strain_type& de,
+              tangent_type& tangent) const {
+    update(stress, state, de);
+    tangent = elastic_.tangent();
+  }
+  tangent_type elastic_tangent() const { return elastic_.tangent(); }
+
+ private:
+  detail::CosseratElasticity<T> elastic_;
+};
+
+static_assert(ConstitutiveModel<CosseratElastic<double>>);
+static_assert(HasConsistentTangent<CosseratElastic<double>>);
+
+}  // namespace cosmpm::material
