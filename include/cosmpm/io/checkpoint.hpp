@@ -69,7 +69,8 @@ std::string store_signature() {
     } else {
       text += "bytes[" + std::to_string(sizeof(V)) + "](";
       for (std::size_t k = 0; k < V::labels.size(); ++k) {
-        text += (k > 0 ? "," : "") + std::string(V::labels[k]);
+        if (k > 0) text += ',';
+        text += V::labels[k];
       }
       text += ")";
     }
