@@ -237,3 +237,29 @@ TEST_CASE("GIMP tends to Linear as the half-width goes to zero") {
     CHECK(max_difference <= lp * (1.0 + 1e-9));
   }
 }
+
+TEST_CASE_TEMPLATE("shape kernels: the float instantiation keeps the identities", K, Linear, GIMP,
+                   QuadraticBSpline, CubicBSpline) {
+  // float round-off: eps = 6e-8 on terms up to |x_i| = 8, a few dozen operations: 1e-5.
+  const Index n = 9;
+  for (double point : sample_points(n, 13u, 300)) {
+    const float xi = static_cast<float>(point);
+    std::array<float, K::support> w{}, g{};
+    const Index first = K::evaluate(xi, static_cast<float>(Case<K>::half_width), n, w, g);
+    REQUIRE(first >= 0);
+    REQUIRE(first <= n - K::support);
+    float sum_w = 0.0f, sum_g = 0.0f, sum_wx = 0.0f, sum_gx = 0.0f;
+    for (int k = 0; k < K::support; ++k) {
+      const auto node = static_cast<float>(first + k);
+      sum_w += w[k];
+      sum_g += g[k];
+      sum_wx += w[k] * node;
+      sum_gx += g[k] * node;
+    }
+    CAPTURE(point);
+    CHECK(std::abs(sum_w - 1.0f) < 1e-5f);
+    CHECK(std::abs(sum_g) < 1e-5f);
+    CHECK(std::abs(sum_wx - xi) < 1e-5f);
+    CHECK(std::abs(sum_gx - 1.0f) < 1e-5f);
+  }
+}
