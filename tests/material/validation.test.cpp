@@ -1,0 +1,88 @@
+#include <doctest/doctest.h>
+
+#include <functional>
+#include <string>
+
+#include "cosmpm/material.hpp"
+
+using namespace cosmpm::material;
+
+namespace {
+
+// Runs `make`, expects a cosmpm::Error, and checks that the message names every fragment
+// (the model, the parameter with its value, the valid range).
+void expect_error(const std::function<void()>& make, std::initializer_list<std::string> fragments) {
+  try {
+    make();
+    FAIL("expected cosmpm::Error");
+  } catch (const cosmpm::Error& error) {
+    const std::string message = error.what();
+    for (const auto& fragment : fragments) {
+      INFO("message: ", message, "  missing: ", fragment);
+      CHECK(message.find(fragment) != std::string::npos);
+    }
+  }
+}
+
+constexpr double kE = 2.76e6, kNu = 0.2, kG = kE / 2.4;
+
+}  // namespace
+
+TEST_CASE("Material parameters out of range give a cosmpm::Error naming value and range") {
+  // Mohr-Coulomb: E, nu, phi, psi, c and the tension cut-off.
+  expect_error([] { MohrCoulomb<double>(0.0, kNu, 26, 2); },
+               {"MohrCoulomb", "youngs_modulus = 0", "(0, inf)"});
+  expect_error([] { MohrCoulomb<double>(kE, 0.5, 26, 2); },
+               {"MohrCoulomb", "poisson_ratio = 0.5", "(-1, 0.5)"});
+  expect_error([] { MohrCoulomb<double>(kE, -1.0, 26, 2); }, {"poisson_ratio = -1", "(-1, 0.5)"});
+  expect_error([] { MohrCoulomb<double>(kE, kNu, 0, 0); },
+               {"MohrCoulomb", "friction_angle_deg = 0", "(0, 90)"});
+  expect_error([] { MohrCoulomb<double>(kE, kNu, 90, 2); }, {"friction_angle_deg = 90", "(0, 90)"});
+  expect_error([] { MohrCoulomb<double>(kE, kNu, 26, 30); },
+               {"MohrCoulomb", "dilatancy_angle_deg = 30", "[0, 26]"});
+  expect_error([] { MohrCoulomb<double>(kE, kNu, 26, -1); },
+               {"dilatancy_angle_deg = -1", "[0, 26]"});
+  expect_error([] { MohrCoulomb<double>(kE, kNu, 26, 2, -5.0); },
+               {"MohrCoulomb", "cohesion = -5", "[0, inf)"});
+  expect_error([] { MohrCoulomb<double>(kE, kNu, 26, 2, 0.0, 10.0); },
+               {"MohrCoulomb", "tension_cutoff = 10", "[0, 0]"});
+  expect_error([] { MohrCoulomb<double>(kE, kNu, 26, 2, 1e3, -1.0); },
+               {"tension_cutoff = -1", "[0, 2050"});
+  CHECK_NOTHROW(MohrCoulomb<double>(kE, kNu, 26, 26, 1e3, 0.0));
+  CHECK_NOTHROW(MohrCoulomb<double>(kE, kNu, 26, 0));
+
+  // Drucker-Prager.
+  expect_error([] { DruckerPrager<double>(-1.0, kNu, 26, 2); },
+               {"DruckerPrager", "youngs_modulus = -1"});
+  expect_error([] { DruckerPrager<double>(kE, kNu, 100, 2); },
+               {"DruckerPrager", "friction_angle_deg = 100", "(0, 90)"});
+  expect_error([] { DruckerPrager<double>(kE, kNu, 26, 27); },
+               {"DruckerPrager", "dilatancy_angle_deg = 27"});
+  expect_error([] { DruckerPrager<double>(kE, kNu, 26, 2, -1.0); },
+               {"DruckerPrager", "cohesion = -1"});
+
+  // Cosserat elasticity and plasticity: l, Gc and the invariant coefficients.
+  expect_error([] { CosseratElastic<double>(kE, kNu, 2 * kG, 0.0); },
+               {"CosseratElastic", "characteristic_length = 0", "(0, inf)"});
+  expect_error([] { CosseratElastic<double>(kE, kNu, -1.0, 0.01); },
+               {"CosseratElastic", "cosserat_shear_modulus = -1", "[0, inf)"});
+  expect_error([] { CosseratElastic<double>(kE, 0.7, 2 * kG, 0.01); },
+               {"CosseratElastic", "poisson_ratio = 0.7"});
+  expect_error([] { CosseratDruckerPrager<double>(kE, kNu, 2 * kG, -0.01, 26, 2); },
+               {"CosseratDruckerPrager", "characteristic_length = -0.01"});
+  expect_error([] { CosseratDruckerPrager<double>(kE, kNu, -2.0, 0.01, 26, 2); },
+               {"CosseratDruckerPrager", "cosserat_shear_modulus = -2"});
+  expect_error([] { CosseratDruckerPrager<double>(kE, kNu, 2 * kG, 0.01, 26, 40); },
+               {"CosseratDruckerPrager", "dilatancy_angle_deg = 40"});
+  expect_error(
+      [] {
+        CosseratDruckerPrager<double>(kE, kNu, 2 * kG, 0.01, 26, 2, 0, {0.1, 0.2, 1});
+      },
+      {"CosseratDruckerPrager", "a1 - a2 = -0.1", "[0, inf)"});
+  expect_error(
+      [] {
+        CosseratDruckerPrager<double>(kE, kNu, 2 * kG, 0.01, 26, 2, 0, {0.375, 0.125, -1});
+      },
+      {"CosseratDruckerPrager", "a3 = -1"});
+  CHECK_NOTHROW(CosseratElastic<double>(kE, kNu, 0.0, 0.01));  // Gc = 0 is allowed
+}
