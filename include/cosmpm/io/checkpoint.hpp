@@ -31,6 +31,13 @@
 #include "cosmpm/io/hdf5.hpp"
 #include "cosmpm/version.hpp"
 
+#if __has_include(<cxxabi.h>)
+#include <cxxabi.h>
+
+#include <cstdlib>
+#define COSMPM_IO_HAVE_CXXABI 1
+#endif
+
 namespace cosmpm::io {
 
 struct CheckpointClock {
@@ -118,6 +125,23 @@ inline std::string signature_difference(const std::string& in_file, const std::s
     if (!found) return "the file has " + theirs + ", which this simulation does not";
   }
   return "the item order differs";
+}
+
+// A readable type name for the signature (demangled where the ABI allows).
+template <class T>
+std::string type_name() {
+  const char* mangled = typeid(T).name();
+#if defined(COSMPM_IO_HAVE_CXXABI)
+  int status = 0;
+  char* readable = abi::__cxa_demangle(mangled, nullptr, nullptr, &status);
+  if (status == 0 && readable != nullptr) {
+    std::string name = readable;
+    std::free(readable);
+    return name;
+  }
+  std::free(readable);
+#endif
+  return mangled;
 }
 
 template <class Sim>
@@ -253,7 +277,7 @@ std::string composition_signature(const Sim& sim) {
   if constexpr (requires { Model::name(); }) {
     model_name = Model::name();
   } else {
-    model_name = typeid(Model).name();
+    model_name = detail::type_name<Model>();
   }
   std::string text = "dim=" + std::to_string(Sim::dim);
   text += "; kernel=" + std::string(Sim::kernel_type::name());

@@ -679,6 +679,13 @@ class ParticleFrameWriter {
         sim.particles(), &sim.grid(), &sim.nodes(), sim.time(), sim.step_count());
   }
 
+  // After a restart of `sim` (at sim.time()): see resume(time) below.
+  template <detail::FrameSource Sim>
+  Index resume(const Sim& sim) {
+    using Grid = std::remove_cvref_t<decltype(sim.grid())>;
+    return resume<std::remove_cvref_t<decltype(sim.particles())>, Grid::dim>(sim.time());
+  }
+
   // After a restart at `time`: finds the frames already on disk with frame time <= `time`
   // (consecutive from frame 0), lists them in the XDMF index again and continues numbering
   // after them; later frames are overwritten as the run reaches them. `Store` (and, for
