@@ -222,8 +222,9 @@ int run(const Options& options) {
       "the soil pushes the blade up). b = unit width; H [N], V [N] for width %g m.\n"
       "z_H: depth of the horizontal resultant. exit: where the slip line from the blade tip\n"
       "reaches the surface (Sokolovski; Coulomb plane for comparison).\n"
-      "CSV files written to %s\n",
-      options.width, options.out.string().c_str());
+      "CSV files written to %s\n"
+      "Plot: /usr/bin/python3 scripts/plot_earth_pressure.py %s\n",
+      options.width, options.out.string().c_str(), options.out.string().c_str());
   return 0;
 }
 
