@@ -68,72 +68,75 @@ struct Stencil {
   // GIMP only). Throws cosmpm::Error if x lies outside the closed grid box, the grid has
   // fewer nodes than the kernel's support along an axis, or GIMP's half-width is out of range.
   void compute(const grid::Grid<Dim>& grid, const Vec<Dim>& x, const Vec<Dim>& half_width) {
-    std::array<std::array<double, support>, Dim> w;
-    std::array<std::array<double, support>, Dim> dw;
-    Index first_node = 0;
-    std::array<Index, Dim> stride;
-    Index axis_stride = 1;
-    for (int d = 0; d < Dim; ++d) {
-      const Index n = grid.nodes(d);
-      const double inv_h = grid.inverse_cell_size()[d];
-      const double last = static_cast<double>(n - 1);
-      double xi = (x[d] - grid.origin()[d]) * inv_h;
-      // A particle on the far face (e.g. at Grid::node_position of the last node) can land a
-      // few ulps past it after the scaling; that is round-off, not a particle outside.
-      bool valid = xi >= 0.0 && xi <= last * (1.0 + detail::position_round_off) && n >= support;
-      if constexpr (UsesHalfWidth<K>) {
-        valid = valid && half_width[d] > K::min_half_width && half_width[d] <= K::max_half_width;
-      }
-      if (!valid) [[unlikely]] {
-        detail::throw_bad_stencil_input<K>(d, x[d], xi, half_width[d], n);
-      }
-      xi = xi < last ? xi : last;
-      const Index first = K::evaluate(xi, half_width[d], n, w[d], dw[d]);
-      for (int k = 0; k < support; ++k) dw[d][k] *= inv_h;
-      stride[d] = axis_stride;
-      first_node += first * axis_stride;
-      axis_stride *= n;
+    // Every index below is a compile-time constant (axes and slots are expanded over index
+    // sequences), so the per-axis factors stay in registers instead of a stack array.
+    Factors f;
+    [&]<int... D>(std::integer_sequence<int, D...>) {
+      (evaluate_axis<D>(grid, x, half_width, f), ...);
     }
-    fill(first_node, stride, w, dw, std::make_index_sequence<size>{});
+    (std::make_integer_sequence<int, Dim>{});
+    [&]<int... Slot>(std::integer_sequence<int, Slot...>) {
+      (fill_slot<Slot>(f, std::make_integer_sequence<int, Dim>{}), ...);
+    }
+    (std::make_integer_sequence<int, size>{});
   }
 
  private:
-  template <std::size_t... Slot>
-  void fill(Index first_node, const std::array<Index, Dim>& stride,
-            const std::array<std::array<double, support>, Dim>& w,
-            const std::array<std::array<double, support>, Dim>& dw, std::index_sequence<Slot...>) {
-    (fill_slot<static_cast<int>(Slot)>(first_node, stride, w, dw), ...);
+  // The 1D weights and physical derivatives per axis, and where the stencil starts.
+  struct Factors {
+    std::array<std::array<double, support>, Dim> w;
+    std::array<std::array<double, support>, Dim> dw;
+    std::array<Index, Dim> stride;
+    Index first_node = 0;
+    Index next_stride = 1;
+  };
+
+  template <int D>
+  static void evaluate_axis(const grid::Grid<Dim>& grid, const Vec<Dim>& x,
+                            const Vec<Dim>& half_width, Factors& f) {
+    const Index n = grid.nodes(D);
+    const double inv_h = grid.inverse_cell_size()[D];
+    const double last = static_cast<double>(n - 1);
+    double xi = (x[D] - grid.origin()[D]) * inv_h;
+    // A particle on the far face (e.g. at Grid::node_position of the last node) can land a
+    // few ulps past it after the scaling; that is round-off, not a particle outside.
+    bool valid = xi >= 0.0 && xi <= last * (1.0 + detail::position_round_off) && n >= support;
+    if constexpr (UsesHalfWidth<K>) {
+      valid = valid && half_width[D] > K::min_half_width && half_width[D] <= K::max_half_width;
+    }
+    if (!valid) [[unlikely]] {
+      detail::throw_bad_stencil_input<K>(D, x[D], xi, half_width[D], n);
+    }
+    xi = xi < last ? xi : last;
+    const Index first = K::evaluate(xi, half_width[D], n, f.w[D], f.dw[D]);
+    [&]<int... I>(std::integer_sequence<int, I...>) {
+      ((f.dw[D][I] *= inv_h), ...);
+    }
+    (std::make_integer_sequence<int, support>{});
+    f.stride[D] = f.next_stride;
+    f.first_node += first * f.next_stride;
+    f.next_stride *= n;
   }
 
   // Slot k has the base-`support` digits (i_0, ..., i_{Dim-1}), i_0 fastest.
   template <int Slot>
-  void fill_slot(Index first_node, const std::array<Index, Dim>& stride,
-                 const std::array<std::array<double, support>, Dim>& w,
-                 const std::array<std::array<double, support>, Dim>& dw) {
-    constexpr std::array<int, Dim> digit = [] {
-      std::array<int, Dim> digits{};
-      int rest = Slot;
-      for (int d = 0; d < Dim; ++d) {
-        digits[d] = rest % support;
-        rest /= support;
-      }
-      return digits;
-    }();
-    Index index = first_node;
-    double product = 1.0;
-    for (int d = 0; d < Dim; ++d) {
-      index += digit[d] * stride[d];
-      product *= w[d][digit[d]];
-    }
-    node[Slot] = index;
-    weight[Slot] = product;
-    for (int a = 0; a < Dim; ++a) {
-      double g = dw[a][digit[a]];
-      for (int d = 0; d < Dim; ++d) {
-        if (d != a) g *= w[d][digit[d]];
-      }
-      gradient[Slot][a] = g;
-    }
+  static constexpr int digit(int axis) {
+    int rest = Slot;
+    for (int d = 0; d < axis; ++d) rest /= support;
+    return rest % support;
+  }
+
+  // The product of the weights of every axis but `Skip` (Skip = -1: all axes).
+  template <int Slot, int Skip, int... D>
+  static double weight_product(const Factors& f, std::integer_sequence<int, D...>) {
+    return ((D == Skip ? 1.0 : f.w[D][digit<Slot>(D)]) * ...);
+  }
+
+  template <int Slot, int... D>
+  void fill_slot(const Factors& f, std::integer_sequence<int, D...> axes) {
+    node[Slot] = f.first_node + ((digit<Slot>(D) * f.stride[D]) + ...);
+    weight[Slot] = weight_product<Slot, -1>(f, axes);
+    ((gradient[Slot][D] = f.dw[D][digit<Slot>(D)] * weight_product<Slot, D>(f, axes)), ...);
   }
 };
 

@@ -9,6 +9,7 @@
 // sides agree on constants and linear functions; see docs/theory/mpm.md, "Shape functions".
 #include <array>
 #include <cstddef>
+#include <utility>
 
 namespace cosmpm::shape::detail {
 
@@ -18,7 +19,10 @@ template <class T, std::size_t S>
 inline void fold_lower_ghost(std::array<T, S>& v) {
   static_assert(S >= 3, "a folded stencil needs the ghost, the edge node and an inner node");
   const T ghost = v[0];
-  for (std::size_t k = 0; k + 1 < S; ++k) v[k] = v[k + 1];
+  [&]<std::size_t... K>(std::index_sequence<K...>) {
+    ((v[K] = v[K + 1]), ...);  // ascending: each slot is read before it is overwritten
+  }
+  (std::make_index_sequence<S - 1>{});
   v[S - 1] = T(0);
   v[0] += T(2) * ghost;
   v[1] -= ghost;
@@ -30,7 +34,10 @@ template <class T, std::size_t S>
 inline void fold_upper_ghost(std::array<T, S>& v) {
   static_assert(S >= 3, "a folded stencil needs the ghost, the edge node and an inner node");
   const T ghost = v[S - 1];
-  for (std::size_t k = S - 1; k > 0; --k) v[k] = v[k - 1];
+  [&]<std::size_t... K>(std::index_sequence<K...>) {
+    ((v[S - 1 - K] = v[S - 2 - K]), ...);  // descending, for the same reason
+  }
+  (std::make_index_sequence<S - 1>{});
   v[0] = T(0);
   v[S - 1] += T(2) * ghost;
   v[S - 2] -= ghost;
