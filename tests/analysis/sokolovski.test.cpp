@@ -1,6 +1,7 @@
 #include <doctest/doctest.h>
 
 #include <cmath>
+#include <random>
 #include <string>
 #include <vector>
 
@@ -238,4 +239,33 @@ TEST_CASE("Bad input throws cosmpm::Error naming the field and its range") {
   throws_with({.friction_angle_deg = 26, .unit_weight = corn_gamma}, "height = nan");
   throws_with({.friction_angle_deg = 26, .height = 0.25}, "unit_weight = nan");
   throws_with({.unit_weight = 1, .height = 1}, "friction_angle_deg = nan");
+}
+
+TEST_CASE("Property: random phi, delta stay between the classical bounds (fixed seed)") {
+  // Passive: log-spiral weightless < K_p < Coulomb (see above). Active: Coulomb's plane
+  // slightly underestimates and wall friction lowers the smooth-wall value, so
+  // coulomb_ka <= K_a <= rankine_ka. Coarse nets keep the test fast; the margins are far
+  // larger than their discretisation error (< 1e-3 relative).
+  std::mt19937 random(20141106);
+  std::uniform_real_distribution<double> unit(0.0, 1.0);
+  for (int sample = 0; sample < 25; ++sample) {
+    const double phi = 12 + 33 * unit(random);
+    const double delta = (0.1 + 0.9 * unit(random)) * phi;
+    const EarthPressureProblem problem{
+        .friction_angle_deg = phi, .wall_friction_deg = delta, .unit_weight = 1, .height = 1};
+    const ca::EarthPressureSolution passive = ca::sokolovski_passive(problem, {40, 20});
+    const ca::EarthPressureSolution active = ca::sokolovski_active(problem, {40, 20});
+    CAPTURE(phi);
+    CAPTURE(delta);
+    CHECK(passive.k_gamma > ca::log_spiral_kp_weightless(phi, delta));
+    if (phi + delta < 90) CHECK(passive.k_gamma < ca::coulomb_kp(phi, delta));
+    CHECK(active.k_gamma > ca::coulomb_ka(phi, delta));
+    CHECK(active.k_gamma < ca::rankine_ka(phi));
+    // The wall friction is fully mobilised along the whole wall in both cases.
+    const double tan_delta = std::tan(cosmpm::degrees_to_radians(delta));
+    const ca::WallStress& tip_p = passive.wall.back();
+    const ca::WallStress& tip_a = active.wall.back();
+    CHECK(tip_p.shear_stress == doctest::Approx(tip_p.normal_pressure * tan_delta).epsilon(1e-9));
+    CHECK(tip_a.shear_stress == doctest::Approx(-tip_a.normal_pressure * tan_delta).epsilon(1e-9));
+  }
 }
