@@ -118,7 +118,7 @@ TEST_CASE("Forces, resultant depth and wall shear are consistent with K_gamma") 
   CHECK(a.wall.back().shear_stress < 0);
 }
 
-TEST_CASE("K_p converges under net refinement; observed order and default accuracy") {
+TEST_CASE("K_p converges under net refinement, with observed order and default accuracy") {
   // Three nets, each twice as fine in both directions. The observed order
   // p = log2(|K1 - K2| / |K2 - K3|) must be clearly positive and the differences shrink; the
   // Richardson estimate of the limit then bounds the error of the default net.
@@ -139,7 +139,7 @@ TEST_CASE("K_p converges under net refinement; observed order and default accura
   }
 }
 
-TEST_CASE("Passive above active; K_p rises with delta and with phi") {
+TEST_CASE("Passive above active, K_p rising with delta and with phi") {
   double previous = 0;
   for (double delta = 0; delta <= 26; delta += 2) {
     const EarthPressureProblem problem{
