@@ -8,6 +8,7 @@
 
 #include "cosmpm/core/types.hpp"
 #include "cosmpm/grid/grid.hpp"
+#include "cosmpm/shape/concept.hpp"
 
 namespace cosmpm::contact {
 
@@ -27,7 +28,24 @@ struct GridView {
   double dt;
   double time;  // at the start of the step
   Phase phase;
+  // Cosserat runs: the nodal micro-spin of the same phase (nullptr otherwise), so a law can
+  // hold the rotation at a rigid body.
+  std::vector<double>* spin = nullptr;
+  // Radius, in cells, of a node's shape-function support: a body whose material comes closer
+  // than this (per axis) puts mass on the node. The simulation passes node_reach<Kernel>().
+  double node_reach = 1.0;
 };
+
+// The support radius of a node's basis function in cells: support / 2 for the hat and the
+// B-splines; GIMP's node function is the hat (its wider stencil comes from particle size).
+template <shape::Kernel K>
+constexpr double node_reach() {
+  if constexpr (shape::UsesHalfWidth<K>) {
+    return 1.0;
+  } else {
+    return 0.5 * static_cast<double>(K::support);
+  }
+}
 
 struct SingleField {
   static constexpr const char* name() { return "single-field no-slip"; }

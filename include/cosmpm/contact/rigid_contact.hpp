@@ -1,0 +1,340 @@
+#pragma once
+// Contact between the material on the grid and rigid bodies with prescribed motion: the
+// multi-velocity-field algorithm of Bardenhagen, Brackbill and Sulsky (2000) with one field
+// infinitely massive. At a contact node (material mass on the node and the body reaching the
+// node's support) the material's velocity v is compared with the body's V(x_i):
+//   v_rel = v - V,  v_n = v_rel . n  (n: the body's outward unit normal at the node)
+//   v_n >= 0: separating, nothing is imposed (free separation);
+//   v_n <  0: approach; the normal part is removed (no interpenetration) and the tangential
+//             part v_t is stuck (|v_t| <= mu |v_n|) or reduced by mu |v_n| (Coulomb slip).
+// The nodal force on the material m_i (v_corrected - v_trial) / dt is recorded in the
+// end-of-step phase, per node (normal and shear parts relative to the body's face) and in
+// total; the force on the body is its negative. See docs/theory/mpm.md, "## Contact".
+#include <algorithm>
+#include <array>
+#include <cmath>
+#include <limits>
+#include <string>
+#include <utility>
+#include <vector>
+
+#include "cosmpm/contact/rigid_body.hpp"
+#include "cosmpm/contact/single_field.hpp"
+#include "cosmpm/core/error.hpp"
+#include "cosmpm/core/types.hpp"
+#include "cosmpm/grid/grid.hpp"
+
+namespace cosmpm::contact {
+
+// How the material meets one rigid body.
+struct Interface {
+  enum class Kind {
+    coulomb,  // Bardenhagen: no interpenetration, free separation, Coulomb friction
+    no_slip,  // single field: the material node moves with the body (no separation either)
+  };
+  Kind kind = Kind::coulomb;
+  double friction_coefficient = 0.0;  // mu = tan(delta), for Kind::coulomb
+  // Cosserat runs: hold the nodal micro-spin at the body's angular velocity at nodes in
+  // contact (the paper's w^c = 0 at the blade); free otherwise.
+  bool hold_rotation = false;
+
+  static Interface coulomb(double mu) {
+    require_non_negative("contact::Interface::coulomb", "friction coefficient mu", mu);
+    Interface i;
+    i.friction_coefficient = mu;
+    return i;
+  }
+  // mu = tan(delta) from the interface friction angle delta in degrees, 0 <= delta < 90.
+  static Interface coulomb_angle(double delta_degrees) {
+    require_in_range("contact::Interface::coulomb_angle", "interface friction angle (degrees)",
+                     delta_degrees, 0.0, 90.0, Bounds::left_closed);
+    return coulomb(std::tan(degrees_to_radians(delta_degrees)));
+  }
+  static Interface frictionless() { return coulomb(0.0); }
+  static Interface no_slip() {
+    Interface i;
+    i.kind = Kind::no_slip;
+    return i;
+  }
+  Interface& with_rotation_held(bool hold = true) {
+    hold_rotation = hold;
+    return *this;
+  }
+};
+
+enum class NodeState { separating, stick, slip, bonded };
+
+// One contact node of the last end-of-step correction.
+template <int Dim>
+struct ContactNode {
+  Index node = 0;
+  int body = 0;
+  int edge = 0;        // the body's edge the node was attributed to
+  double along = 0.0;  // position of the node's foot point along that edge, from its start
+  Vec<Dim> position = Vec<Dim>::Zero();
+  Vec<Dim> normal = Vec<Dim>::Zero();   // the body's outward unit normal used at the node
+  Vec<Dim> tangent = Vec<Dim>::Zero();  // unit vector along the edge (start -> end vertex)
+  double mass = 0.0;
+  Vec<Dim> force_on_material = Vec<Dim>::Zero();  // m (v_corrected - v_trial) / dt
+  double normal_force = 0.0;  // force_on_material . normal: >= 0 when the body pushes
+  double shear_force = 0.0;   // force_on_material . tangent
+  NodeState state = NodeState::separating;
+};
+
+// Traction the material exerts on one stretch of a body's edge, per unit out-of-plane width.
+struct TractionBin {
+  double centre = 0.0;  // along the edge from its start vertex
+  double width = 0.0;
+  double normal_traction = 0.0;  // pressure on the body's face (compression positive)
+  double shear_traction = 0.0;   // on the body along the edge tangent
+  int nodes = 0;                 // contact nodes pressing in the bin
+};
+
+template <int Dim>
+class RigidContact {
+  static_assert(Dim == 2, "contact::RigidContact: only 2D (polygonal bodies) is implemented");
+
+ public:
+  static constexpr const char* name() { return "rigid bodies, Bardenhagen Coulomb contact"; }
+
+  // Adds a body; returns its index.
+  int add_body(RigidBody<Dim> body, const Interface& interface) {
+    if (interface.kind == Interface::Kind::coulomb) {
+      require_non_negative("contact::RigidContact::add_body", "friction coefficient mu",
+                           interface.friction_coefficient);
+    }
+    bodies_.push_back({std::move(body), interface, Vec<Dim>::Zero()});
+    return static_cast<int>(bodies_.size()) - 1;
+  }
+
+  int body_count() const { return static_cast<int>(bodies_.size()); }
+  const RigidBody<Dim>& body(int b) const { return entry(b).body; }
+  RigidBody<Dim>& body(int b) { return entry(b).body; }
+  const Interface& interface(int b) const { return entry(b).interface; }
+
+  // --- results of the last end-of-step correction --------------------------------------
+  const std::vector<ContactNode<Dim>>& contact_nodes() const { return records_; }
+  // Total force the body applied to the material in the last step (draft = x component for a
+  // blade pushing along +x); the force on the body is its negative.
+  const Vec<Dim>& force_on_material(int b) const { return entry(b).force_on_material; }
+  Vec<Dim> force_on_body(int b) const { return -entry(b).force_on_material; }
+
+  // Normal and shear traction along edge `edge` of body `b` from the last step's nodal forces:
+  // the forces of the nodes attributed to the edge, binned by their foot point along it and
+  // divided by the bin width (the node's tributary length). Bins are centred where grid lines
+  // cross the edge when it is axis-aligned, so each bin holds one row of nodes. bin_width = 0
+  // means the cell size along the edge. Sum of traction * width over the bins = the edge's
+  // total force.
+  std::vector<TractionBin> traction_profile(int b, int edge, double bin_width = 0.0) const {
+    const auto& e = entry(b);
+    require_in_range("contact::RigidContact::traction_profile", "edge", edge, 0,
+                     e.body.edge_count() - 1, Bounds::closed);
+    require_non_negative("contact::RigidContact::traction_profile", "bin_width", bin_width);
+    require(recorded_,
+            "contact::RigidContact::traction_profile: no step has been recorded yet (call it "
+            "after Simulation::step)");
+    const Vec<Dim> t = e.body.edge_tangent(edge);
+    const Vec<Dim> n = e.body.edge_normal(edge);
+    if (bin_width == 0.0)
+      bin_width = std::abs(t[0]) * cell_size_[0] + std::abs(t[1]) * cell_size_[1];
+    const double length = e.body.edge_length(edge);
+    // Bin k is centred at phase + k * width: grid nodes project onto bin centres.
+    const double phase = (origin_ - e.body.edge_start(edge)).dot(t);
+    const auto bin_of = [&](double along) {
+      return static_cast<Index>(std::floor((along - phase) / bin_width + 0.5));
+    };
+    const Index first = bin_of(0.0);
+    const Index last = bin_of(length);
+    std::vector<TractionBin> bins(static_cast<std::size_t>(last - first + 1));
+    for (std::size_t k = 0; k < bins.size(); ++k) {
+      bins[k].centre = phase + static_cast<double>(first + static_cast<Index>(k)) * bin_width;
+      bins[k].width = bin_width;
+    }
+    for (const auto& r : records_) {
+      if (r.body != b || r.edge != edge) continue;
+      const Index k = std::clamp(bin_of(r.along), first, last) - first;
+      auto& bin = bins[static_cast<std::size_t>(k)];
+      // The material pushes the body with -force_on_material.
+      bin.normal_traction += r.force_on_material.dot(n) / bin_width;
+      bin.shear_traction -= r.force_on_material.dot(t) / bin_width;
+      if (r.state != NodeState::separating) ++bin.nodes;
+    }
+    return bins;
+  }
+
+  // --- the contact-policy interface ----------------------------------------------------
+  void correct(GridView<Dim>& view) {
+    const bool record = view.phase == Phase::end_velocity;
+    if (record) {
+      records_.clear();
+      recorded_ = true;
+      cell_size_ = view.grid.cell_size();
+      origin_ = view.grid.origin();
+      for (auto& e : bodies_) e.force_on_material.setZero();
+    }
+    for (int b = 0; b < body_count(); ++b) correct_body(view, b, record);
+  }
+
+  void advance(double dt, double time) {
+    for (auto& e : bodies_) e.body.advance(dt, time);
+  }
+
+ private:
+  struct Entry {
+    RigidBody<Dim> body;
+    Interface interface;
+    Vec<Dim> force_on_material;
+  };
+
+  const Entry& entry(int b) const {
+    require_in_range("contact::RigidContact", "body index", b, 0, body_count() - 1, Bounds::closed);
+    return bodies_[static_cast<std::size_t>(b)];
+  }
+  Entry& entry(int b) {
+    require_in_range("contact::RigidContact", "body index", b, 0, body_count() - 1, Bounds::closed);
+    return bodies_[static_cast<std::size_t>(b)];
+  }
+
+  static void require_on_grid(const grid::Grid<Dim>& g, const RigidBody<Dim>& body, int b) {
+    const Vec<Dim> lo = g.origin();
+    const Vec<Dim> hi = g.origin() + g.extent();
+    for (int d = 0; d < Dim; ++d) {
+      if (body.upper_bound()[d] < lo[d] || body.lower_bound()[d] > hi[d]) {
+        throw Error("contact::RigidContact: rigid body " + std::to_string(b) +
+                    " with bounding box [" + detail::format_number(body.lower_bound()[0]) + ", " +
+                    detail::format_number(body.lower_bound()[1]) + "] - [" +
+                    detail::format_number(body.upper_bound()[0]) + ", " +
+                    detail::format_number(body.upper_bound()[1]) + "] lies outside the grid box [" +
+                    detail::format_number(lo[0]) + ", " + detail::format_number(lo[1]) + "] - [" +
+                    detail::format_number(hi[0]) + ", " + detail::format_number(hi[1]) +
+                    "] (valid range: the body must overlap the grid)");
+      }
+    }
+  }
+
+  // Direction of increasing material mass at a node (central differences of nodal mass,
+  // one-sided on the grid faces): it points from the body into the material.
+  static Vec<Dim> mass_gradient(const GridView<Dim>& view, Index n) {
+    const auto ijk = view.grid.node_ijk(n);
+    Vec<Dim> g = Vec<Dim>::Zero();
+    Index stride = 1;
+    for (int d = 0; d < Dim; ++d) {
+      const bool has_lower = ijk[d] > 0;
+      const bool has_upper = ijk[d] < view.grid.nodes(d) - 1;
+      const double lower = has_lower ? view.mass[n - stride] : view.mass[n];
+      const double upper = has_upper ? view.mass[n + stride] : view.mass[n];
+      const double span = (has_lower && has_upper) ? 2.0 : 1.0;
+      g[d] = (upper - lower) / (span * view.grid.cell_size()[d]);
+      stride *= view.grid.nodes(d);
+    }
+    return g;
+  }
+
+  // The boundary point whose normal the node uses: the closest one, unless the material lies
+  // on another side (a node inside or behind a body thinner than the support sees the face
+  // the material touches, not the nearest one); then the closest of the edges within the
+  // node's support that face the material.
+  static BoundaryPoint contact_point(const GridView<Dim>& view, const RigidBody<Dim>& body, Index n,
+                                     const Vec<Dim>& x, const Vec<Dim>& reach) {
+    const BoundaryPoint closest = body.closest(x);
+    const Vec<Dim> g = mass_gradient(view, n);
+    if (closest.normal.dot(g) >= 0.0) return closest;
+    const bool inside = closest.signed_distance < 0.0;
+    BoundaryPoint best = closest;
+    double best_distance = std::numeric_limits<double>::infinity();
+    for (int e = 0; e < body.edge_count(); ++e) {
+      if (!body.edge_meets_open_box(e, x, reach)) continue;
+      const BoundaryPoint p = body.closest_on_edge(x, e, inside);
+      // Behind a thin body the facing edge lies beyond it: its face normal, not the offset.
+      const Vec<Dim> normal = body.edge_normal(e);
+      if (normal.dot(g) <= 0.0) continue;
+      const double distance = std::abs(p.signed_distance);
+      if (distance < best_distance) {
+        best = p;
+        best.normal = normal;
+        best_distance = distance;
+      }
+    }
+    return best;
+  }
+
+  void correct_body(GridView<Dim>& view, int b, bool record) {
+    Entry& e = bodies_[static_cast<std::size_t>(b)];
+    const RigidBody<Dim>& body = e.body;
+    const auto& g = view.grid;
+    require_on_grid(g, body, b);
+    const double mid = view.time + 0.5 * view.dt;
+    const Vec<Dim> body_velocity = body.velocity(mid);
+    const double body_omega = body.angular_velocity(mid);
+    const Vec<Dim> reach = view.node_reach * g.cell_size();
+    // Nodes whose support box can meet the body's bounding box.
+    std::array<Index, Dim> lo{};
+    std::array<Index, Dim> hi{};
+    for (int d = 0; d < Dim; ++d) {
+      const double a = (body.lower_bound()[d] - reach[d] - g.origin()[d]) / g.cell_size()[d];
+      const double c = (body.upper_bound()[d] + reach[d] - g.origin()[d]) / g.cell_size()[d];
+      lo[d] = static_cast<Index>(std::clamp(std::floor(a), 0.0, static_cast<double>(g.cells(d))));
+      hi[d] = static_cast<Index>(std::clamp(std::ceil(c), 0.0, static_cast<double>(g.cells(d))));
+    }
+    const double mu = e.interface.friction_coefficient;
+    for (Index j = lo[1]; j <= hi[1]; ++j) {
+      for (Index i = lo[0]; i <= hi[0]; ++i) {
+        const Index n = g.node_index({i, j});
+        const double m = view.mass[n];
+        if (m <= view.empty_mass) continue;
+        const Vec<Dim> x = g.node_position(n);
+        if (!body.meets_open_box(x, reach)) continue;
+        const BoundaryPoint p = contact_point(view, body, n, x, reach);
+        const Vec<Dim> v_trial = view.velocity[n];
+        const Vec<Dim> v_body = body.velocity_at(x, body_velocity, body_omega);
+        const Vec<Dim> v_rel = v_trial - v_body;
+        const double v_n = v_rel.dot(p.normal);
+        Vec<Dim> v_new = v_trial;
+        NodeState state = NodeState::separating;
+        if (e.interface.kind == Interface::Kind::no_slip) {
+          v_new = v_body;
+          state = NodeState::bonded;
+        } else if (v_n < 0.0) {
+          const Vec<Dim> v_t = v_rel - v_n * p.normal;
+          const double v_t_norm = v_t.norm();
+          const double limit = mu * (-v_n);
+          if (v_t_norm <= limit) {
+            v_new = v_body;
+            state = NodeState::stick;
+          } else {
+            v_new = v_body + (1.0 - limit / v_t_norm) * v_t;
+            state = NodeState::slip;
+          }
+        }
+        view.velocity[n] = v_new;
+        if (state != NodeState::separating && e.interface.hold_rotation && view.spin != nullptr) {
+          (*view.spin)[static_cast<std::size_t>(n)] = body_omega;
+        }
+        if (!record) continue;
+        ContactNode<Dim> r;
+        r.node = n;
+        r.body = b;
+        r.edge = p.edge;
+        r.along = p.along;
+        r.position = x;
+        r.normal = p.normal;
+        r.tangent = body.edge_tangent(p.edge);
+        r.mass = m;
+        r.force_on_material = m * (v_new - v_trial) / view.dt;
+        r.normal_force = r.force_on_material.dot(r.normal);
+        r.shear_force = r.force_on_material.dot(r.tangent);
+        r.state = state;
+        e.force_on_material += r.force_on_material;
+        records_.push_back(r);
+      }
+    }
+  }
+
+  std::vector<Entry> bodies_;
+  std::vector<ContactNode<Dim>> records_;
+  bool recorded_ = false;
+  Vec<Dim> cell_size_ = Vec<Dim>::Ones();
+  Vec<Dim> origin_ = Vec<Dim>::Zero();
+};
+
+}  // namespace cosmpm::contact
