@@ -23,6 +23,7 @@
 #include <Eigen/LU>  // determinant
 
 #include "cosmpm/contact/single_field.hpp"
+#include "cosmpm/continuum/rates.hpp"
 #include "cosmpm/core/error.hpp"
 #include "cosmpm/core/parallel.hpp"
 #include "cosmpm/core/types.hpp"
@@ -52,6 +53,9 @@ struct SimulationParameters {
   int threads = 0;
   // Nodes lighter than this fraction of a typical particle mass are treated as empty.
   double empty_node_mass_fraction = 1e-12;
+  // Cosserat continua only: micro-inertia J per unit mass of new particles, m^2 (the
+  // paper's corn: 0.5 (0.5 l)^2 = 12.5e-6 m^2 for l = 10 mm).
+  double micro_inertia = 0.0;
 };
 
 namespace detail {
@@ -74,7 +78,9 @@ class Simulation {
   using stress_type = typename model_type::stress_type;
   using state_type = typename model_type::state_type;
   using stencil_type = shape::Stencil<Dim, Kernel>;
+  using rates_type = typename Continuum::template rates_type<Dim>;
   static constexpr int dim = Dim;
+  static constexpr bool is_cosserat = Continuum::is_cosserat;
 
   struct NodeFields {
     std::vector<double> mass;
@@ -82,6 +88,13 @@ class Simulation {
     std::vector<Vec<Dim>> force;
     std::vector<Vec<Dim>> velocity;  // updated velocity (end of the step)
     std::vector<Vec<Dim>> acceleration;
+    // Cosserat only (empty otherwise): lumped rotational inertia sum N m J, spin momentum
+    // then start spin, moment, end spin and spin acceleration.
+    std::vector<double> rotational_inertia;
+    std::vector<double> spin_momentum;
+    std::vector<double> moment;
+    std::vector<double> spin;
+    std::vector<double> spin_acceleration;
   };
 
   Simulation(const grid::Grid<Dim>& background, const model_type& model,
@@ -109,6 +122,15 @@ class Simulation {
     nodes_.force.assign(nodes, Vec<Dim>::Zero());
     nodes_.velocity.assign(nodes, Vec<Dim>::Zero());
     nodes_.acceleration.assign(nodes, Vec<Dim>::Zero());
+    if constexpr (is_cosserat) {
+      require_positive("SimulationParameters", "micro_inertia (Cosserat continuum)",
+                       parameters.micro_inertia);
+      nodes_.rotational_inertia.assign(nodes, 0.0);
+      nodes_.spin_momentum.assign(nodes, 0.0);
+      nodes_.moment.assign(nodes, 0.0);
+      nodes_.spin.assign(nodes, 0.0);
+      nodes_.spin_acceleration.assign(nodes, 0.0);
+    }
     for (int d = 0; d < Dim; ++d) {
       blocks_per_axis_[d] = (grid_.cells(d) + detail::ParticleBlocks::block_cells - 1) /
                             detail::ParticleBlocks::block_cells;
@@ -159,17 +181,33 @@ class Simulation {
       owner[p] = body;
       stress[p].setZero();
       strain[p].setZero();
+      if constexpr (is_cosserat) {
+        particles_.template get<particles::field::MicroInertia>()[p] = parameters_.micro_inertia;
+      }
     }
     typical_particle_mass_ = std::max(typical_particle_mass_, volume * density);
     max_density_ = std::max(max_density_, density);
     return first;
   }
 
-  // Largest stable step: the p-wave crosses the smallest cell at most once.
+  // Largest stable step: the p-wave crosses the smallest cell at most once. A Cosserat
+  // continuum also bounds it by its highest rotational frequency,
+  //   omega^2 = (4 Gc + 8 G l^2 sum_d 1 / h_d^2) / (rho J),  dt <= 2 / omega,
+  // the local (s_xy - s_yx) stiffness plus the couple-stress "Laplacian" on the grid.
   double stable_time_step() const {
     require(max_density_ > 0.0, "Simulation::stable_time_step: no particles have been added");
     const double wave_speed = std::sqrt(model_.p_wave_modulus() / max_density_);
-    return grid_.min_cell_size() / wave_speed;
+    double stable = grid_.min_cell_size() / wave_speed;
+    if constexpr (is_cosserat) {
+      double inverse_h2 = 0.0;
+      for (int d = 0; d < Dim; ++d)
+        inverse_h2 += 1.0 / (grid_.cell_size()[d] * grid_.cell_size()[d]);
+      const double stiffness =
+          4.0 * model_.cosserat_shear_modulus() + 4.0 * model_.bending_modulus() * inverse_h2;
+      const double omega = std::sqrt(stiffness / (max_density_ * parameters_.micro_inertia));
+      stable = std::min(stable, 2.0 / omega);
+    }
+    return stable;
   }
 
   // The step the run uses: the requested one, checked against the stable one.
@@ -195,7 +233,8 @@ class Simulation {
     if constexpr (Scheme::scheme == integrator::Scheme::usf) {
       map_to_grid(/*with_forces=*/false);
       grid_velocity_from_momentum();
-      velocity_gradient_from_grid(nodes_.momentum);  // momentum holds the start velocity
+      // momentum holds the start velocity, spin_momentum the start spin
+      velocity_gradient_from_grid(nodes_.momentum, nodes_.spin_momentum);
       update_stress(dt);
       map_forces_to_grid();
       update_grid(dt);
@@ -209,7 +248,7 @@ class Simulation {
       update_grid(dt);
       map_to_particles(dt);
       remap_momentum();
-      velocity_gradient_from_grid(nodes_.velocity);
+      velocity_gradient_from_grid(nodes_.velocity, nodes_.spin);
       update_stress(dt);
     }
     contact_.advance(dt, time_);
@@ -235,6 +274,7 @@ class Simulation {
       s.compute(grid_, x[p], half[p]);
       const double mp = mass[p];
       const Vec<Dim> momentum = mp * v[p];
+      if constexpr (is_cosserat) map_rotation_to_grid(p, s, with_forces);
       if (with_forces) {
         // A local copy: node stores could alias the particle arrays, forcing reloads.
         const stress_type volume_stress = vol[p] * stress[p];
@@ -260,6 +300,12 @@ class Simulation {
 
   // USF only: forces after the stress update (mass and momentum are already on the grid).
   void map_forces_to_grid() {
+    if constexpr (is_cosserat) {
+      for (Index n = 0; n < grid_.node_count(); ++n) {
+        nodes_.spin_momentum[n] *= nodes_.rotational_inertia[n];
+        nodes_.moment[n] = 0.0;
+      }
+    }
     const auto& x = particles_.template get<particles::field::Position<Dim>>();
     const auto& mass = particles_.template get<particles::field::Mass>();
     const auto& vol = particles_.template get<particles::field::Volume>();
@@ -274,6 +320,7 @@ class Simulation {
     for_each_particle_coloured([&](Index p) {
       stencil_type s;
       s.compute(grid_, x[p], half[p]);
+      if constexpr (is_cosserat) map_moment_to_grid(p, s);
       const Vec<Dim> weight_force = mass[p] * gravity;
       for (int k = 0; k < stencil_type::size; ++k) {
         nodes_.force[s.node[k]] +=
@@ -296,6 +343,7 @@ class Simulation {
       if (m <= empty) {
         nodes_.momentum[n].setZero();
         nodes_.velocity[n].setZero();
+        if constexpr (is_cosserat) nodes_.spin_momentum[n] = nodes_.spin[n] = 0.0;
         continue;
       }
       const Vec<Dim> v_start = nodes_.momentum[n] / m;
@@ -309,15 +357,31 @@ class Simulation {
       }
       nodes_.momentum[n] = v_start;
       nodes_.velocity[n] = v_start + dt * force / m;
+      if constexpr (is_cosserat) {
+        const double inertia = nodes_.rotational_inertia[n];
+        const double spin_start = nodes_.spin_momentum[n] / inertia;
+        double moment = nodes_.moment[n];
+        if (damping > 0.0) {
+          const double sign = spin_start > 0.0 ? 1.0 : (spin_start < 0.0 ? -1.0 : 0.0);
+          moment -= damping * std::abs(moment) * sign;
+        }
+        nodes_.spin_momentum[n] = spin_start;
+        nodes_.spin[n] = spin_start + dt * moment / inertia;
+      }
     }
     // Contact acts on the updated velocity only, so the acceleration (and through FLIP the
     // particles) carries its impulse; boundary conditions come last and win.
-    correct_contact(nodes_.velocity, dt, contact::Phase::end_velocity);
+    correct_contact(nodes_.velocity, spin_field(nodes_.spin), dt, contact::Phase::end_velocity);
     COSMPM_OMP_PARALLEL_FOR(threads_)
     for (Index n = 0; n < count; ++n) {
       apply_boundary_conditions(n, nodes_.momentum[n]);
       apply_boundary_conditions(n, nodes_.velocity[n]);
       nodes_.acceleration[n] = (nodes_.velocity[n] - nodes_.momentum[n]) / dt;
+      if constexpr (is_cosserat) {
+        apply_rotation_conditions(n, nodes_.spin_momentum[n]);
+        apply_rotation_conditions(n, nodes_.spin[n]);
+        nodes_.spin_acceleration[n] = (nodes_.spin[n] - nodes_.spin_momentum[n]) / dt;
+      }
     }
   }
 
@@ -349,16 +413,19 @@ class Simulation {
       s.compute(grid_, x[p], half[p]);
       Vec<Dim> v_grid = Vec<Dim>::Zero();
       Vec<Dim> a_grid = Vec<Dim>::Zero();
-      Mat<Dim> gradient = Mat<Dim>::Zero();
+      rates_type rates;
       for (int k = 0; k < stencil_type::size; ++k) {
         const Vec<Dim>& v_node = nodes_.velocity[s.node[k]];
         v_grid += s.weight[k] * v_node;
         a_grid += s.weight[k] * nodes_.acceleration[s.node[k]];
-        if constexpr (with_stress_update) gradient.noalias() += v_node * s.gradient[k].transpose();
+        if constexpr (with_stress_update) {
+          rates.velocity_gradient.noalias() += v_node * s.gradient[k].transpose();
+        }
       }
+      if constexpr (is_cosserat) map_rotation_to_particle(p, s, dt, flip, rates);
       if constexpr (with_stress_update) {
-        L[p] = gradient;
-        if (!update_particle_stress(p, gradient, dt)) record_first(first_bad, p);
+        L[p] = rates.velocity_gradient;
+        if (!update_particle_stress(p, rates, dt)) record_first(first_bad, p);
       }
       v[p] = flip * (v[p] + dt * a_grid) + (1.0 - flip) * v_grid;
       x[p] += dt * v_grid;
@@ -379,11 +446,12 @@ class Simulation {
 
   // Constitutive update, deformation gradient and volume of one particle; false when the
   // result is not physical (inverted volume or non-finite stress).
-  bool update_particle_stress(Index p, const Mat<Dim> L, double dt) {
+  bool update_particle_stress(Index p, const rates_type& rates, double dt) {
+    const Mat<Dim> L = rates.velocity_gradient;
     auto& F = particles_.template get<particles::field::DeformationGradient<Dim>>()[p];
     auto& stress = particles_.template get<particles::field::Stress<model_type>>()[p];
     Continuum::update_stress(
-        model_, L, dt, stress,
+        model_, rates, dt, stress,
         particles_.template get<particles::field::MaterialState<model_type>>()[p],
         particles_.template get<particles::field::Strain<model_type>>()[p]);
     F = (Mat<Dim>::Identity() + dt * L) * F;
@@ -430,6 +498,7 @@ class Simulation {
     const auto& mass = particles_.template get<particles::field::Mass>();
     const auto& half = particles_.template get<particles::field::HalfWidth<Dim>>();
     std::fill(nodes_.velocity.begin(), nodes_.velocity.end(), Vec<Dim>::Zero());
+    if constexpr (is_cosserat) std::fill(nodes_.spin.begin(), nodes_.spin.end(), 0.0);
     const auto& start = start_positions();
     for_each_particle_coloured([&](Index p) {
       stencil_type s;
@@ -438,46 +507,69 @@ class Simulation {
       for (int k = 0; k < stencil_type::size; ++k) {
         nodes_.velocity[s.node[k]] += s.weight[k] * momentum;
       }
+      if constexpr (is_cosserat) {
+        const double spin_momentum = mass[p] *
+                                     particles_.template get<particles::field::MicroInertia>()[p] *
+                                     particles_.template get<particles::field::MicroSpin>()[p];
+        for (int k = 0; k < stencil_type::size; ++k) {
+          nodes_.spin[s.node[k]] += s.weight[k] * spin_momentum;
+        }
+      }
     });
     const double empty = empty_node_mass();
     for (Index n = 0; n < grid_.node_count(); ++n) {
       if (nodes_.mass[n] <= empty) {
         nodes_.velocity[n].setZero();
+        if constexpr (is_cosserat) nodes_.spin[n] = 0.0;
         continue;
       }
       nodes_.velocity[n] /= nodes_.mass[n];
+      if constexpr (is_cosserat) nodes_.spin[n] /= nodes_.rotational_inertia[n];
     }
-    correct_contact(nodes_.velocity, current_dt_, contact::Phase::remapped_velocity);
-    for (Index n = 0; n < grid_.node_count(); ++n) apply_boundary_conditions(n, nodes_.velocity[n]);
+    correct_contact(nodes_.velocity, spin_field(nodes_.spin), current_dt_,
+                    contact::Phase::remapped_velocity);
+    for (Index n = 0; n < grid_.node_count(); ++n) {
+      apply_boundary_conditions(n, nodes_.velocity[n]);
+      if constexpr (is_cosserat) apply_rotation_conditions(n, nodes_.spin[n]);
+    }
   }
 
-  // Stage 4a: particle velocity gradient from a nodal velocity field, at the stencils of the
-  // start of the step.
-  void velocity_gradient_from_grid(const std::vector<Vec<Dim>>& node_velocity) {
+  // Stage 4a: particle rates (velocity gradient; Cosserat: spin and its gradient) from a
+  // nodal field, at the stencils of the start of the step. The spin field is ignored by a
+  // classical continuum.
+  void velocity_gradient_from_grid(const std::vector<Vec<Dim>>& node_velocity,
+                                   const std::vector<double>& node_spin = {}) {
     const auto& start = start_positions();
     auto& L = particles_.template get<particles::field::VelocityGradient<Dim>>();
     const auto& half = particles_.template get<particles::field::HalfWidth<Dim>>();
     const Index count = particles_.size();
+    particle_rates_.resize(count);
     COSMPM_OMP_PARALLEL_FOR(threads_)
     for (Index p = 0; p < count; ++p) {
       stencil_type s;
       s.compute(grid_, start[p], half[p]);
-      Mat<Dim> gradient = Mat<Dim>::Zero();
+      rates_type rates;
       for (int k = 0; k < stencil_type::size; ++k) {
-        gradient.noalias() += node_velocity[s.node[k]] * s.gradient[k].transpose();
+        rates.velocity_gradient.noalias() += node_velocity[s.node[k]] * s.gradient[k].transpose();
+        if constexpr (is_cosserat) {
+          rates.spin += s.weight[k] * node_spin[s.node[k]];
+          rates.spin_gradient += node_spin[s.node[k]] * s.gradient[k];
+        }
       }
-      L[p] = gradient;
+      L[p] = rates.velocity_gradient;
+      particle_rates_[p] = rates;
     }
   }
 
   // Stage 4b: constitutive update, deformation gradient and volume.
   void update_stress(double dt) {
-    const auto& L = particles_.template get<particles::field::VelocityGradient<Dim>>();
+    require(static_cast<Index>(particle_rates_.size()) == particles_.size(),
+            "Simulation::update_stress: call velocity_gradient_from_grid first");
     const Index count = particles_.size();
     Index first_bad = count;
     COSMPM_OMP_PARALLEL_FOR(threads_)
     for (Index p = 0; p < count; ++p) {
-      if (!update_particle_stress(p, L[p], dt)) record_first(first_bad, p);
+      if (!update_particle_stress(p, particle_rates_[p], dt)) record_first(first_bad, p);
     }
     if (first_bad < count) throw_unstable_stress(first_bad);
   }
@@ -500,6 +592,13 @@ class Simulation {
   }
   const grid::BoundaryConditions<Dim>& boundary_conditions() const {
     return boundary_;
+  }
+  // The contact law: rigid-body positions, forces and traction records of the last step.
+  Contact& contact() {
+    return contact_;
+  }
+  const Contact& contact() const {
+    return contact_;
   }
   const model_type& model() const {
     return model_;
@@ -536,6 +635,11 @@ class Simulation {
     std::fill(nodes_.mass.begin(), nodes_.mass.end(), 0.0);
     std::fill(nodes_.momentum.begin(), nodes_.momentum.end(), Vec<Dim>::Zero());
     if (with_forces) std::fill(nodes_.force.begin(), nodes_.force.end(), Vec<Dim>::Zero());
+    if constexpr (is_cosserat) {
+      std::fill(nodes_.rotational_inertia.begin(), nodes_.rotational_inertia.end(), 0.0);
+      std::fill(nodes_.spin_momentum.begin(), nodes_.spin_momentum.end(), 0.0);
+      if (with_forces) std::fill(nodes_.moment.begin(), nodes_.moment.end(), 0.0);
+    }
   }
 
   double empty_node_mass() const {
@@ -547,17 +651,93 @@ class Simulation {
     for (Index n = 0; n < grid_.node_count(); ++n) {
       if (nodes_.mass[n] <= empty) {
         nodes_.momentum[n].setZero();
+        if constexpr (is_cosserat) nodes_.spin_momentum[n] = 0.0;
         continue;
       }
       nodes_.momentum[n] /= nodes_.mass[n];
+      if constexpr (is_cosserat) nodes_.spin_momentum[n] /= nodes_.rotational_inertia[n];
     }
-    correct_contact(nodes_.momentum, current_dt_, contact::Phase::start_velocity);
-    for (Index n = 0; n < grid_.node_count(); ++n) apply_boundary_conditions(n, nodes_.momentum[n]);
+    correct_contact(nodes_.momentum, spin_field(nodes_.spin_momentum), current_dt_,
+                    contact::Phase::start_velocity);
+    for (Index n = 0; n < grid_.node_count(); ++n) {
+      apply_boundary_conditions(n, nodes_.momentum[n]);
+      if constexpr (is_cosserat) apply_rotation_conditions(n, nodes_.spin_momentum[n]);
+    }
   }
 
-  void correct_contact(std::vector<Vec<Dim>>& velocity, double dt, contact::Phase phase) {
-    contact::GridView<Dim> view{grid_, nodes_.mass, velocity, empty_node_mass(), dt, time_, phase};
+  std::vector<double>* spin_field(std::vector<double>& spin) {
+    if constexpr (is_cosserat) {
+      return &spin;
+    } else {
+      return nullptr;
+    }
+  }
+
+  void correct_contact(std::vector<Vec<Dim>>& velocity, std::vector<double>* spin, double dt,
+                       contact::Phase phase) {
+    contact::GridView<Dim> view{grid_,
+                                nodes_.mass,
+                                velocity,
+                                empty_node_mass(),
+                                dt,
+                                time_,
+                                phase,
+                                spin,
+                                contact::node_reach<Kernel>()};
     contact_.correct(view);
+  }
+
+  void apply_rotation_conditions(Index node, double& spin) const {
+    const auto ijk = grid_.node_ijk(node);
+    for (int axis = 0; axis < Dim; ++axis) {
+      if ((ijk[axis] == 0 && boundary_.rotation_fixed(2 * axis)) ||
+          (ijk[axis] == grid_.nodes(axis) - 1 && boundary_.rotation_fixed(2 * axis + 1))) {
+        spin = 0.0;
+      }
+    }
+  }
+
+  // Cosserat particle-to-grid: rotational inertia, spin momentum and (with forces) moment.
+  void map_rotation_to_grid(Index p, const stencil_type& s, bool with_forces) {
+    const double mp = particles_.template get<particles::field::Mass>()[p];
+    const double inertia = mp * particles_.template get<particles::field::MicroInertia>()[p];
+    const double spin_momentum =
+        inertia * particles_.template get<particles::field::MicroSpin>()[p];
+    for (int k = 0; k < stencil_type::size; ++k) {
+      nodes_.rotational_inertia[s.node[k]] += s.weight[k] * inertia;
+      nodes_.spin_momentum[s.node[k]] += s.weight[k] * spin_momentum;
+    }
+    if (with_forces) map_moment_to_grid(p, s);
+  }
+
+  void map_moment_to_grid(Index p, const stencil_type& s) {
+    const stress_type volume_stress =
+        particles_.template get<particles::field::Volume>()[p] *
+        particles_.template get<particles::field::Stress<model_type>>()[p];
+    for (int k = 0; k < stencil_type::size; ++k) {
+      nodes_.moment[s.node[k]] += Continuum::moment_term(volume_stress, s.weight[k], s.gradient[k]);
+    }
+  }
+
+  // Cosserat grid-to-particle: spin (PIC/FLIP), micro-rotation, and the spin rates of the
+  // stress update, from the end-of-step nodal spin.
+  void map_rotation_to_particle(Index p, const stencil_type& s, double dt, double flip,
+                                rates_type& rates) {
+    double spin_grid = 0.0, spin_acceleration = 0.0;
+    Vec<Dim> spin_gradient = Vec<Dim>::Zero();
+    for (int k = 0; k < stencil_type::size; ++k) {
+      const double spin_node = nodes_.spin[s.node[k]];
+      spin_grid += s.weight[k] * spin_node;
+      spin_acceleration += s.weight[k] * nodes_.spin_acceleration[s.node[k]];
+      spin_gradient += spin_node * s.gradient[k];
+    }
+    double& spin = particles_.template get<particles::field::MicroSpin>()[p];
+    spin = flip * (spin + dt * spin_acceleration) + (1.0 - flip) * spin_grid;
+    particles_.template get<particles::field::MicroRotation>()[p] += dt * spin_grid;
+    if constexpr (is_cosserat) {
+      rates.spin = spin_grid;
+      rates.spin_gradient = spin_gradient;
+    }
   }
 
   void apply_boundary_conditions(Index node, Vec<Dim>& velocity) const {
@@ -640,6 +820,7 @@ class Simulation {
   std::vector<Index> particle_block_;
   std::vector<Index> order_;
   std::vector<Vec<Dim>> stencil_positions_;
+  std::vector<rates_type> particle_rates_;  // MUSL/USF: between rates and stress update
 };
 
 }  // namespace cosmpm

@@ -3,6 +3,7 @@
 // updated from the velocity gradient of a step.
 #include <tuple>
 
+#include "cosmpm/continuum/rates.hpp"
 #include "cosmpm/core/types.hpp"
 #include "cosmpm/material/concept.hpp"
 #include "cosmpm/particles/fields.hpp"
@@ -25,11 +26,15 @@ requires(!Model::is_cosserat) struct Classical {
                        particles::field::Stress<Model>, particles::field::Strain<Model>,
                        particles::field::MaterialState<Model>>;
 
+  template <int Dim>
+  using rates_type = ParticleRates<Dim, false>;
+
   // Objective (Jaumann) stress update for a 2D plane-strain step with velocity gradient L:
   // rotate the old stress by the spin, then let the model integrate the strain increment.
-  static void update_stress(const Model& model, const Mat<2>& velocity_gradient, double dt,
+  static void update_stress(const Model& model, const rates_type<2>& rates, double dt,
                             typename Model::stress_type& stress, typename Model::state_type& state,
                             typename Model::strain_type& accumulated_strain) {
+    const Mat<2>& velocity_gradient = rates.velocity_gradient;
     const double spin = 0.5 * (velocity_gradient(0, 1) - velocity_gradient(1, 0)) * dt;
     const double sxx = stress[0];
     const double syy = stress[1];

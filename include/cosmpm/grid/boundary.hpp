@@ -38,6 +38,14 @@ class BoundaryConditions {
   }
   const FaceCondition& operator[](int face_index) const { return faces_[face_index]; }
 
+  // Cosserat continua: whether the micro-rotation rate is held at zero on a face.
+  void set_rotation_fixed(int face_index, bool fixed) {
+    require_in_range("BoundaryConditions::set_rotation_fixed", "face", face_index, 0,
+                     face_count - 1, Bounds::closed);
+    rotation_fixed_[face_index] = fixed;
+  }
+  bool rotation_fixed(int face_index) const { return rotation_fixed_[face_index]; }
+
   // Imposes the face condition on the updated velocity `v` of a node lying on that face. For
   // a friction wall the removed normal velocity is the impulse that bounds the tangential one.
   static void apply(const FaceCondition& condition, int axis, bool upper, Vec<Dim>& v) {
@@ -73,6 +81,7 @@ class BoundaryConditions {
 
  private:
   std::array<FaceCondition, face_count> faces_{};
+  std::array<bool, face_count> rotation_fixed_{};
 };
 
 }  // namespace cosmpm::grid

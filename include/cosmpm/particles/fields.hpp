@@ -69,3 +69,21 @@ struct MaterialState {
 };
 
 }  // namespace cosmpm::particles::field
+
+namespace cosmpm::particles::field {
+
+// Cosserat (polar) fields, present only in Cosserat compositions.
+struct MicroRotation {  // omega_3, counter-clockwise positive, rad
+  using value_type = double;
+  static constexpr const char* label() { return "micro_rotation"; }
+};
+struct MicroSpin {  // d omega_3 / dt, rad/s
+  using value_type = double;
+  static constexpr const char* label() { return "micro_spin"; }
+};
+struct MicroInertia {  // J per unit mass, m^2 (the paper: 0.5 (0.5 l)^2)
+  using value_type = double;
+  static constexpr const char* label() { return "micro_inertia"; }
+};
+
+}  // namespace cosmpm::particles::field

@@ -1,0 +1,84 @@
+#pragma once
+// The Cosserat (polar) continuum in 2D plane strain: each particle also carries the
+// micro-rotation omega_3, its rate and a micro-inertia J (per unit mass); stresses are
+// non-symmetric and couple stresses m_31, m_32 appear. Conventions are the material's
+// (material/cosserat_elastic.hpp): s_ij acts in direction j on the face with normal x_i,
+//   e_xy = du_y/dx - omega_3,  e_yx = du_x/dy + omega_3,  kappa_3i = d omega_3 / dx_i,
+// and the balances are d s_ij / dx_i + b_j = rho a_j and
+//   rho J d^2 omega_3 / dt^2 = d m_3i / dx_i + s_xy - s_yx.
+// Their weak forms give, per particle of volume V and node shape function N:
+//   f_j = -V s_ij dN/dx_i,   moment = -V m_3i dN/dx_i + V (s_xy - s_yx) N.
+#include "cosmpm/continuum/rates.hpp"
+#include "cosmpm/core/types.hpp"
+#include "cosmpm/material/concept.hpp"
+#include "cosmpm/particles/fields.hpp"
+#include "cosmpm/particles/store.hpp"
+
+namespace cosmpm::continuum {
+
+template <material::ConstitutiveModel Model>
+requires(Model::is_cosserat) struct Cosserat {
+  using model_type = Model;
+  static constexpr bool is_cosserat = true;
+
+  template <int Dim>
+  using particle_store =
+      particles::Store<particles::field::Position<Dim>, particles::field::InitialPosition<Dim>,
+                       particles::field::Velocity<Dim>, particles::field::Mass,
+                       particles::field::Volume, particles::field::InitialVolume,
+                       particles::field::HalfWidth<Dim>, particles::field::VelocityGradient<Dim>,
+                       particles::field::DeformationGradient<Dim>, particles::field::Body,
+                       particles::field::Stress<Model>, particles::field::Strain<Model>,
+                       particles::field::MaterialState<Model>, particles::field::MicroRotation,
+                       particles::field::MicroSpin, particles::field::MicroInertia>;
+
+  template <int Dim>
+  using rates_type = ParticleRates<Dim, true>;
+
+  // The in-plane stress is rotated with the continuum spin (Jaumann, valid for a
+  // non-symmetric tensor: S += dt (W S - S W)) and the couple-stress vector with it
+  // (m += dt W m); then the model integrates the Cosserat deformation increment.
+  static void update_stress(const Model& model, const rates_type<2>& rates, double dt,
+                            typename Model::stress_type& stress, typename Model::state_type& state,
+                            typename Model::strain_type& accumulated_strain) {
+    const Mat<2>& L = rates.velocity_gradient;
+    // W = [[0, w], [-w, 0]], w = (L_xy - L_yx) / 2, times dt.
+    const double w = 0.5 * (L(0, 1) - L(1, 0)) * dt;
+    const double sxx = stress[0], syy = stress[1], sxy = stress[3], syx = stress[4];
+    // Tensor S with S(0,1) = s_xy, S(1,0) = s_yx: (W S - S W) entries.
+    stress[0] = sxx + w * (syx + sxy);
+    stress[1] = syy - w * (sxy + syx);
+    stress[3] = sxy + w * (syy - sxx);
+    stress[4] = syx + w * (syy - sxx);
+    const double m1 = stress[5], m2 = stress[6];
+    stress[5] = m1 + w * m2;
+    stress[6] = m2 - w * m1;
+
+    typename Model::strain_type increment;
+    increment[0] = L(0, 0) * dt;
+    increment[1] = L(1, 1) * dt;
+    increment[2] = 0.0;
+    increment[3] = (L(1, 0) - rates.spin) * dt;  // du_y/dx - omega_3
+    increment[4] = (L(0, 1) + rates.spin) * dt;  // du_x/dy + omega_3
+    increment[5] = rates.spin_gradient[0] * dt;
+    increment[6] = rates.spin_gradient[1] * dt;
+    model.update(stress, state, increment);
+    accumulated_strain += increment;
+  }
+
+  // Translational internal force density: s_ij dN/dx_i (the caller multiplies by -V).
+  static Vec<2> stress_divergence_term(const typename Model::stress_type& stress,
+                                       const Vec<2>& gradient) {
+    return Vec<2>(stress[0] * gradient[0] + stress[4] * gradient[1],
+                  stress[3] * gradient[0] + stress[1] * gradient[1]);
+  }
+
+  // Nodal moment of a particle (already multiplied by V): -m_3i dN/dx_i + (s_xy - s_yx) N.
+  static double moment_term(const typename Model::stress_type& volume_stress, double weight,
+                            const Vec<2>& gradient) {
+    return -(volume_stress[5] * gradient[0] + volume_stress[6] * gradient[1]) +
+           (volume_stress[3] - volume_stress[4]) * weight;
+  }
+};
+
+}  // namespace cosmpm::continuum
