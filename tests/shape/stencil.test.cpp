@@ -122,7 +122,7 @@ TEST_CASE("Stencil<2>: bilinear Q4 weights by hand") {
   // s(1 - t), (1 - s)t, s t with s = 0.25, t = 0.6; gradients dN/dx = dN/ds / hx.
   const Vec<2> x(-0.05 + (2 + 0.25) * 0.015, 0.02 + (1 + 0.6) * 0.014);
   Stencil<2, Linear> s;
-  s.compute(grid, x, Vec<2>::Zero());
+  s.compute(grid, x);  // the overload without a half-width, for kernels that ignore it
   const std::array<Index, 4> expected_node{2 + 1 * 9, 3 + 1 * 9, 2 + 2 * 9, 3 + 2 * 9};
   const std::array<double, 4> expected_weight{0.75 * 0.4, 0.25 * 0.4, 0.75 * 0.6, 0.25 * 0.6};
   const std::array<Vec<2>, 4> expected_gradient{
@@ -220,6 +220,14 @@ TEST_CASE_TEMPLATE("Stencil<3>: compiles and keeps partition of unity and linear
     check_stencil<3, K>(grid, x, Vec<3>::Constant(Case<K>::half_width));
   }
 }
+
+// Only GIMP needs the particle size; the overload without it is not offered for GIMP.
+template <class S>
+concept ComputesWithoutHalfWidth = requires(S s, const cosmpm::grid::Grid<2>& g, const Vec<2>& x) {
+  s.compute(g, x);
+};
+static_assert(ComputesWithoutHalfWidth<Stencil<2, QuadraticBSpline>>);
+static_assert(!ComputesWithoutHalfWidth<Stencil<2, GIMP>>);
 
 TEST_CASE("Stencil: bad input throws cosmpm::Error naming the value and the range") {
   const auto grid = test_grid<2>();

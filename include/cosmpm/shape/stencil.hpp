@@ -81,6 +81,11 @@ struct Stencil {
     (std::make_integer_sequence<int, size>{});
   }
 
+  // Kernels that ignore the particle size (all but GIMP) can be called without it.
+  void compute(const grid::Grid<Dim>& grid, const Vec<Dim>& x) requires(!UsesHalfWidth<K>) {
+    compute(grid, x, Vec<Dim>::Zero());
+  }
+
  private:
   // The 1D weights and physical derivatives per axis, and where the stencil starts.
   struct Factors {
