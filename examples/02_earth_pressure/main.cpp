@@ -39,7 +39,7 @@ struct Options {
 
 const char* usage =
     "usage: example_02_earth_pressure [options]\n"
-    "  --phi DEG         soil friction angle, (0, 90)           [26]\n"
+    "  --phi DEG         soil friction angle, (0, 60]           [26]\n"
     "  --delta DEG       wall friction angle, [0, phi]          [14]\n"
     "  --gamma N/m^3     soil unit weight, >= 0                 [778 x 9.81]\n"
     "  --height M        blade depth in soil, > 0; repeatable   [0.15 0.25 0.35]\n"
@@ -88,7 +88,8 @@ Options parse(int argc, char** argv) {
     const std::string_view text = argv[++i];
     if (flag == "--phi") {
       options.problem.friction_angle_deg = parse_number(flag, text);
-      cosmpm::require_in_range("command line", flag, options.problem.friction_angle_deg, 0, 90);
+      cosmpm::require_in_range("command line", flag, options.problem.friction_angle_deg, 0, 60,
+                               Bounds::right_closed);
     } else if (flag == "--delta") {
       options.problem.wall_friction_deg = parse_number(flag, text);
     } else if (flag == "--gamma") {

@@ -223,6 +223,8 @@ TEST_CASE("Bad input throws cosmpm::Error naming the field and its range") {
   throws_with(p, "friction_angle_deg = 0 is outside the valid range (0, 90)");
   p = corn(0.25), p.friction_angle_deg = 90;
   throws_with(p, "friction_angle_deg = 90");
+  p = corn(0.25), p.friction_angle_deg = 61, p.wall_friction_deg = 0;
+  throws_with(p, "friction_angle_deg = 61 is outside the valid range (0, 60]");
   p = corn(0.25), p.height = 0;
   throws_with(p, "height = 0");
   p = corn(0.25), p.height = -0.1;
@@ -235,6 +237,7 @@ TEST_CASE("Bad input throws cosmpm::Error naming the field and its range") {
   throws_with(p, "cohesion = -5");
   throws_with(corn(0.25), "resolution.wall_lines = 1", {1, 40});
   throws_with(corn(0.25), "resolution.fan_rays = 0", {80, 0});
+  throws_with({.friction_angle_deg = 26, .unit_weight = 0, .height = 1}, "all 0");
   // Fields left unset are NaN and rejected rather than defaulted.
   throws_with({.friction_angle_deg = 26, .unit_weight = corn_gamma}, "height = nan");
   throws_with({.friction_angle_deg = 26, .height = 0.25}, "unit_weight = nan");

@@ -28,6 +28,7 @@
 #include <cmath>
 #include <cstddef>
 #include <limits>
+#include <string>
 #include <string_view>
 #include <vector>
 
@@ -40,7 +41,7 @@ namespace cosmpm::analysis {
 // The problem. The fields without a usable default are NaN so that forgetting them fails
 // loudly instead of computing a weightless or zero-height case.
 struct EarthPressureProblem {
-  double friction_angle_deg = std::numeric_limits<double>::quiet_NaN();  // phi, (0, 90) deg
+  double friction_angle_deg = std::numeric_limits<double>::quiet_NaN();  // phi, (0, 60] deg
   double wall_friction_deg = 0;  // delta, [0, phi] deg; 0 is a smooth wall
   double unit_weight = std::numeric_limits<double>::quiet_NaN();  // gamma, N/m^3, >= 0
   double height = std::numeric_limits<double>::quiet_NaN();       // h, wall height in soil, m
@@ -50,10 +51,12 @@ struct EarthPressureProblem {
 
 // Resolution of the characteristics net. `wall_lines` characteristics run from the Rankine
 // zone to the wall (the wall profile has wall_lines + 1 points, top included); the fan at the
-// top of the wall has `fan_rays` + 1 rays. K_gamma converges at an observed order of about 2.6
-// (delta well below phi) to 1.2 (delta = phi); the defaults keep its discretisation error below
-// 0.1 % (tests/analysis/sokolovski.test.cpp: 1e-5 for the corn, 3e-4 at delta = phi) in about
-// 10-20 ms (several nets when a surcharge or cohesion makes the net close by iteration).
+// top of the wall has `fan_rays` + 1 rays (they matter only with a surcharge or cohesion).
+// K_gamma converges at an observed order of about 2.6 (delta well below phi) to 1.2 (delta =
+// phi, phi = 26 deg). The defaults keep its error below 0.1 % for phi <= 30 deg at any delta
+// (1e-5 for the corn, 2.5e-4 at delta = phi) and for phi <= 45 deg with delta <= phi / 2, in
+// about 10-20 ms; larger phi with delta near phi needs a finer net (docs/theory/earth_pressure.md
+// has the error table).
 struct CharacteristicsResolution {
   int wall_lines = 80;
   int fan_rays = 40;
@@ -262,6 +265,21 @@ inline NetResult solve_net(const NetSetup& setup, double height) {
   return net;
 }
 
+// A net that folds over itself (wall nodes out of depth order) or loses its stresses cannot be
+// refined into an answer; say so instead of returning it.
+inline void check_net(std::string_view where, const NetResult& net) {
+  for (std::size_t i = 1; i < net.wall.size(); ++i) {
+    const NetPoint& node = net.wall[i];
+    if (!(node.z > net.wall[i - 1].z) || !(node.p > 0) || !std::isfinite(node.p)) {
+      throw Error(std::string(where) +
+                  ": the characteristics net folded or lost its stresses at wall node " +
+                  std::to_string(i) + " (depth " + cosmpm::detail::format_number(node.z) +
+                  ", p = " + cosmpm::detail::format_number(node.p) +
+                  "); phi and delta are outside what the net resolves");
+    }
+  }
+}
+
 inline NetSetup make_net_setup(EarthPressureCase kind, double phi, double delta, double gamma,
                                double surface_load, const CharacteristicsResolution& resolution) {
   NetSetup setup{};
@@ -291,13 +309,17 @@ inline std::vector<WallStress> wall_stresses(const NetResult& net, const NetSetu
 }  // namespace detail
 
 // Solves the passive or active problem. Throws cosmpm::Error naming the bad field and its
-// valid range: phi in (0, 90) deg, delta in [0, phi], gamma >= 0, h > 0, q >= 0, c >= 0,
-// wall_lines in [2, 20000], fan_rays in [2, 20000].
+// valid range: phi in (0, 60] deg, delta in [0, phi], gamma >= 0, h > 0, q >= 0, c >= 0 (not
+// all three of gamma, q, c zero), wall_lines in [2, 20000], fan_rays in [2, 20000].
 inline EarthPressureSolution sokolovski(EarthPressureCase kind, const EarthPressureProblem& problem,
                                         const CharacteristicsResolution& resolution = {}) {
   const std::string_view where = kind == EarthPressureCase::passive ? "analysis::sokolovski_passive"
                                                                     : "analysis::sokolovski_active";
   detail::check_wall_friction(where, problem.friction_angle_deg, problem.wall_friction_deg);
+  // Beyond 60 deg the passive net with wall friction spans tens of wall heights with p growing
+  // like exp(2 theta tan phi); the marching scheme is not verified there (see the docs).
+  require_in_range(where, "friction_angle_deg", problem.friction_angle_deg, 0.0, 60.0,
+                   Bounds::right_closed);
   require_non_negative(where, "unit_weight", problem.unit_weight);
   require_positive(where, "height", problem.height);
   require_non_negative(where, "surcharge", problem.surcharge);
@@ -305,6 +327,11 @@ inline EarthPressureSolution sokolovski(EarthPressureCase kind, const EarthPress
   require_in_range(where, "resolution.wall_lines", resolution.wall_lines, 2, 20000, Bounds::closed);
   require_in_range(where, "resolution.fan_rays", resolution.fan_rays, 2, 20000, Bounds::closed);
 
+  if (problem.unit_weight == 0 && problem.surcharge == 0 && problem.cohesion == 0) {
+    // No stress anywhere: the principal directions, and so the net, are undefined.
+    throw Error(std::string(where) +
+                ": unit_weight, surcharge and cohesion are all 0; at least one must be positive");
+  }
   const double phi = degrees_to_radians(problem.friction_angle_deg);
   const double delta = degrees_to_radians(problem.wall_friction_deg);
   const double cohesion_shift = problem.cohesion / std::tan(phi);
@@ -320,13 +347,15 @@ inline EarthPressureSolution sokolovski(EarthPressureCase kind, const EarthPress
   const bool weight_only = surface_load == 0 && problem.unit_weight > 0;
   if (!weight_only) {
     const detail::NetSetup unit = detail::make_net_setup(kind, phi, delta, 1.0, 0.0, resolution);
-    solution.k_gamma =
-        k_gamma_of(detail::wall_stresses(detail::solve_net(unit, 1.0), unit, 0.0), 1.0, 1.0);
+    const detail::NetResult unit_net = detail::solve_net(unit, 1.0);
+    detail::check_net(where, unit_net);
+    solution.k_gamma = k_gamma_of(detail::wall_stresses(unit_net, unit, 0.0), 1.0, 1.0);
   }
 
   const detail::NetSetup setup =
       detail::make_net_setup(kind, phi, delta, problem.unit_weight, surface_load, resolution);
   const detail::NetResult net = detail::solve_net(setup, problem.height);
+  detail::check_net(where, net);
   solution.wall = detail::wall_stresses(net, setup, cohesion_shift);
   if (weight_only)
     solution.k_gamma = k_gamma_of(solution.wall, problem.unit_weight, problem.height);
