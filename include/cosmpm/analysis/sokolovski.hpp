@@ -75,9 +75,10 @@ struct SlipLinePoint {
 
 struct EarthPressureSolution {
   EarthPressureCase kind{};
-  // Normal-component coefficient of the gamma term: normal_pressure = K gamma z on a weightless
-  // surface without cohesion. K_p when passive, K_a when active. Divide by cos(delta) for the
-  // coefficient of the inclined resultant tabulated by Caquot-Kerisel and Kerisel-Absi.
+  // Normal-component coefficient of the gamma term: normal_pressure = K gamma z when there is
+  // no surcharge and no cohesion (always computed on such a net, whatever q and c are). K_p when
+  // passive, K_a when active. Divide by cos(delta) for the coefficient of the inclined resultant
+  // tabulated by Caquot-Kerisel and Kerisel-Absi.
   double k_gamma{};
   double horizontal_force_per_width{};   // N/m, wall on soil, positive into the soil
   double vertical_force_per_width{};     // N/m, wall on soil, positive upward
