@@ -132,6 +132,10 @@ hid_t native_type() {
   }
 }
 
+// The numeric attribute types: times and counts.
+template <class T>
+concept AttributeNumber = std::is_same_v<T, double> || std::is_same_v<T, std::int64_t>;
+
 inline std::string shape_text(const std::vector<hsize_t>& dims) {
   std::string text = "[";
   for (std::size_t i = 0; i < dims.size(); ++i) {
@@ -291,17 +295,15 @@ class Hdf5File {
   }
 
   // --- scalar attributes of an object (default: the root group) -----------------------
-  template <class T>
-  requires(std::is_same_v<T, double> ||
-           std::is_same_v<T, std::int64_t>) void set_attribute(const std::string& name, T value,
-                                                               const std::string& object = "/") {
+  template <detail::AttributeNumber T>
+  void set_attribute(const std::string& name, T value, const std::string& object = "/") {
     detail::Hid space(H5Screate(H5S_SCALAR), H5Sclose);
     write_attribute(object, name, space.get(), detail::native_type<T>(), &value);
   }
 
-  template <class T>
-  requires(std::is_same_v<T, double> || std::is_same_v<T, std::int64_t>) void set_attribute(
-      const std::string& name, const std::vector<T>& values, const std::string& object = "/") {
+  template <detail::AttributeNumber T>
+  void set_attribute(const std::string& name, const std::vector<T>& values,
+                     const std::string& object = "/") {
     const hsize_t count = values.size();
     detail::Hid space(H5Screate_simple(1, &count, nullptr), H5Sclose);
     write_attribute(object, name, space.get(), detail::native_type<T>(), values.data());
@@ -316,10 +318,8 @@ class Hdf5File {
     write_attribute(object, name, space.get(), type.get(), padded.data());
   }
 
-  template <class T>
-  requires(std::is_same_v<T, double> || std::is_same_v<T, std::int64_t>) T
-      attribute(const std::string& name, const std::string& object = "/")
-  const {
+  template <detail::AttributeNumber T>
+  T attribute(const std::string& name, const std::string& object = "/") const {
     detail::Hid attr = open_attribute(object, name);
     detail::Hid space(H5Aget_space(attr.get()), H5Sclose);
     if (H5Sget_simple_extent_npoints(space.get()) != 1) {
@@ -411,9 +411,8 @@ namespace detail {
 template <class V>
 struct EigenFixed : std::false_type {};
 template <int Rows, int Cols, int Options, int MaxRows, int MaxCols>
-requires(Rows > 0 &&
-         Cols > 0) struct EigenFixed<Eigen::Matrix<double, Rows, Cols, Options, MaxRows, MaxCols>>
-    : std::true_type {
+struct EigenFixed<Eigen::Matrix<double, Rows, Cols, Options, MaxRows, MaxCols>>
+    : std::bool_constant<(Rows > 0 && Cols > 0)> {
   static constexpr Index rows = Rows;
   static constexpr Index cols = Cols;
 };
