@@ -125,26 +125,73 @@ class CosseratDruckerPrager {
     return modes;
   }
 
-  // Solves sum_j w_j / (q0 + (slope + c_j) x)^2 = 1 for x > 0 (h convex and decreasing).
+  // Solves h(x) = sum_j w_j / (q0 + (slope + c_j) x)^2 - 1 = 0 for x > 0; h is convex and
+  // decreasing where every u_j = q0 + (slope + c_j) x > 0.
   T solve_multiplier(const std::array<T, 3>& w, T q_trial, T q0, T slope) const {
     const std::array<T, 3>& c = mode_stiffness_;
+    const auto h_and_slope = [&](T x, T& dh) {
+      T h = -1;
+      dh = 0;
+      for (int j = 0; j < 3; ++j) {
+        if (w[j] <= T(0)) continue;
+        const T inverse = 1 / (q0 + (slope + c[j]) * x);
+        const T term = w[j] * inverse * inverse;
+        h += term;
+        dh -= 2 * term * (slope + c[j]) * inverse;
+      }
+      return h;
+    };
     const T c_max = std::max({c[0], c[1], c[2]});
-    T x = (q_trial - q0) / (slope + c_max);  // h(x) >= 0 here when every u_j > 0
-    // Beyond the apex some u_j may not be positive yet: start just right of the last pole.
+    if (q0 > T(0)) {
+      // Inside the apex pressure every u_j >= q0 > 0. The iteration runs on G(x) = F^(-1/2) = 1,
+      // F = sum_j w_j / u_j^2: G is a (p = -2) power mean of the u_j, so it is concave and
+      // increasing in x and linear when all c_j are equal (one step is then exact). The start
+      // is one Newton step from x = 0; `lo` (all c_j = c_max) bounds the root from the left.
+      const T lo = (q_trial - q0) / (slope + c_max);
+      const T c_mean = (w[0] * c[0] + w[1] * c[1] + w[2] * c[2]) / (q_trial * q_trial);
+      T x = (q_trial - q0) / (slope + c_mean);
+      const T scale = q0 / (slope + c_max);
+      for (int iteration = 0; iteration < 60; ++iteration) {
+        const T u0 = q0 + (slope + c[0]) * x;
+        const T u1 = q0 + (slope + c[1]) * x;
+        const T u2 = q0 + (slope + c[2]) * x;
+        const T inverse_product = 1 / (u0 * u1 * u2);  // one division for the three inverses
+        const T i0 = u1 * u2 * inverse_product;
+        const T i1 = u0 * u2 * inverse_product;
+        const T i2 = u0 * u1 * inverse_product;
+        const T t0 = w[0] * i0 * i0, t1 = w[1] * i1 * i1, t2 = w[2] * i2 * i2;
+        const T r0 = slope + c[0], r1 = slope + c[1], r2 = slope + c[2];
+        const T f = t0 + t1 + t2;
+        const T df = -2 * (t0 * r0 * i0 + t1 * r1 * i1 + t2 * r2 * i2);
+        const T d2f =
+            6 * (t0 * r0 * r0 * i0 * i0 + t1 * r1 * r1 * i1 * i1 + t2 * r2 * r2 * i2 * i2);
+        // Halley on g = G - 1, G = F^(-1/2): cubic convergence, two evaluations as a rule.
+        const T inverse_root = 1 / std::sqrt(f);
+        const T inverse_f = inverse_root * inverse_root;
+        const T g_value = inverse_root - 1;
+        const T g1 = -T(0.5) * df * inverse_f * inverse_root;
+        const T g2 = (T(0.75) * df * df * inverse_f - T(0.5) * d2f) * inverse_f * inverse_root;
+        const T step = -2 * g_value * g1 / (2 * g1 * g1 - g_value * g2);
+        const T next = std::max(x + step, lo);
+        // With cubic convergence a step below 1e-6 of the scale of the u_j leaves an error
+        // below ~1e-16 after it: take it and stop. (A test relative to x alone would chase
+        // rounding noise when x is tiny.)
+        if (!(std::abs(next - x) > T(1e-6) * (x + scale))) return next;
+        x = next;
+      }
+      return x;
+    }
+    // Beyond the apex pressure (the apex test failed): start right of the last pole of h,
+    // where h > 0, and let Newton climb monotonically to the root.
+    T x = (q_trial - q0) / (slope + c_max);
     for (int j = 0; j < 3; ++j) {
       if (w[j] <= T(0)) continue;
       const T rate = slope + c[j];
       if (q0 + rate * x <= T(0)) x = -q0 / rate * (1 + T(1e-6));
     }
     for (int iteration = 0; iteration < 100; ++iteration) {
-      T h = -1;
-      T dh = 0;
-      for (int j = 0; j < 3; ++j) {
-        if (w[j] <= T(0)) continue;
-        const T u = q0 + (slope + c[j]) * x;
-        h += w[j] / (u * u);
-        dh -= 2 * w[j] * (slope + c[j]) / (u * u * u);
-      }
+      T dh;
+      const T h = h_and_slope(x, dh);
       const T step = -h / dh;
       x += step;
       if (!(std::abs(step) > T(1e-15) * x)) break;

@@ -86,8 +86,71 @@ class MohrCoulomb {
     return (sorted[0] - sorted[2]) + (sorted[0] + sorted[2]) * sin_phi_ - 2 * cohesion_ * cos_phi_;
   }
 
+  // The hot path: scalar code for the regions of the cone with the cut-off at the apex (the
+  // general path below handles a lower cut-off and gives the same results otherwise).
   void update(stress_type& stress, state_type& state, const strain_type& de) const {
-    (void)update_impl<false>(stress, state, de, nullptr);
+    const T g2 = 2 * elastic_.shear;
+    const T volumetric = elastic_.lambda * (de[0] + de[1] + de[2]);
+    const T xx = stress[0] + (volumetric + g2 * de[0]);
+    const T yy = stress[1] + (volumetric + g2 * de[1]);
+    const T zz = stress[2] + (volumetric + g2 * de[2]);
+    const T xy = stress[3] + g2 * de[3];
+    const T mean = (xx + yy) / 2;
+    const T half = (xx - yy) / 2;
+    const T radius = std::sqrt(half * half + xy * xy);
+    const T a = mean + radius;
+    const T b = mean - radius;
+    const T s1 = std::max(a, zz);
+    const T s2 = std::min(std::max(zz, b), a);
+    const T s3 = std::min(b, zz);
+    const T f = k_ * s1 - s3 - offset_;
+    if (f <= T(0) && (!has_cutoff_ || s1 <= cutoff_)) {
+      stress = stress_type(xx, yy, zz, xy);
+      state.plastic = 0.0;
+      return;
+    }
+    if (has_cutoff_) {
+      stress = stress_type(xx, yy, zz, xy);
+      (void)update_impl<false>(stress, state, strain_type::Zero(), nullptr);
+      return;
+    }
+    // Yield plane first; if its result leaves the sorted sector, an edge line or the apex.
+    T r1 = s1 - plane_step_[0] * f;
+    T r2 = s2 - plane_step_[1] * f;
+    T r3 = s3 - plane_step_[2] * f;
+    T gamma;
+    if (r1 >= r2 && r2 >= r3) {
+      gamma = plane_gamma_ * f;
+    } else {
+      const bool compression_side = r1 < r2;
+      const Vec3& normal = compression_side ? edge_c_scaled_normal_ : edge_e_scaled_normal_;
+      const Vec3& direction = compression_side ? edge_c_direction_ : edge_e_direction_;
+      const T t = std::min(
+          T(0), normal[0] * (s1 - apex_) + normal[1] * (s2 - apex_) + normal[2] * (s3 - apex_));
+      r1 = apex_ + t * direction[0];
+      r2 = apex_ + t * direction[1];
+      r3 = apex_ + t * direction[2];
+      const T d1 = s1 - r1, d2 = s2 - r2, d3 = s3 - r3;
+      const T removed_mean = (d1 + d2 + d3) / 3;
+      gamma = std::sqrt(2 * ((d1 - removed_mean) * (d1 - removed_mean) +
+                             (d2 - removed_mean) * (d2 - removed_mean) +
+                             (d3 - removed_mean) * (d3 - removed_mean))) /
+              g2;
+    }
+    // Back to (a, b, zz) by the rank sigma_zz had, then rotate with the trial directions.
+    T na, nb, nz;
+    if (zz >= a) {
+      nz = r1, na = r2, nb = r3;
+    } else if (zz >= b) {
+      na = r1, nz = r2, nb = r3;
+    } else {
+      na = r1, nb = r2, nz = r3;
+    }
+    const T ratio = radius > T(0) ? (na - nb) / (2 * radius) : T(0);
+    const T new_mean = (na + nb) / 2;
+    stress = stress_type(new_mean + half * ratio, new_mean - half * ratio, nz, xy * ratio);
+    state.plastic_shear_strain += static_cast<double>(gamma);
+    state.plastic = 1.0;
   }
 
   void update(stress_type& stress, state_type& state, const strain_type& de,
@@ -147,6 +210,11 @@ class MohrCoulomb {
     const Vec3 b_plane(m_, 0, -1);
     flow_plane_ = elastic_times(b_plane);
     plane_denominator_ = normal_.dot(flow_plane_);
+    plane_step_ = flow_plane_ / plane_denominator_;
+    // Plane region: the stress removed is f * plane_step_, so the plastic shear strain
+    // sqrt(2 e:e) of its deviator / 2G is f times a constant.
+    const Vec3 step_deviator = plane_step_ - Vec3::Constant(plane_step_.mean());
+    plane_gamma_ = std::sqrt(2 * step_deviator.squaredNorm()) / (2 * elastic_.shear);
     // Compression edge s1 = s2: planes k s1 - s3 and k s2 - s3 both active. The return lies on
     // the line apex + t (1, 1, k) and moves in the span of their flows, so t follows from the
     // normal of that span.
@@ -154,11 +222,13 @@ class MohrCoulomb {
     edge_c_direction_ = Vec3(1, 1, k_);
     edge_c_normal_ = flow_plane_.cross(elastic_times(b_second));
     edge_c_denominator_ = edge_c_normal_.dot(edge_c_direction_);
+    edge_c_scaled_normal_ = edge_c_normal_ / edge_c_denominator_;
     // Extension edge s2 = s3: planes k s1 - s3 and k s1 - s2, line apex + t (1, k, k).
     const Vec3 b_third(m_, -1, 0);
     edge_e_direction_ = Vec3(1, k_, k_);
     edge_e_normal_ = flow_plane_.cross(elastic_times(b_third));
     edge_e_denominator_ = edge_e_normal_.dot(edge_e_direction_);
+    edge_e_scaled_normal_ = edge_e_normal_ / edge_e_denominator_;
     // The general solver for a cut-off below the apex: the three Mohr-Coulomb planes that can be
     // active for sorted stresses and the three associated cut-off planes.
     cutoff_planes_.add(normal_, offset_, flow_plane_);
@@ -261,9 +331,11 @@ class MohrCoulomb {
   Vec3 normal_;
   Vec3 flow_plane_;
   T plane_denominator_{};
-  Vec3 edge_c_direction_, edge_c_normal_;
+  Vec3 plane_step_;
+  T plane_gamma_{};
+  Vec3 edge_c_direction_, edge_c_normal_, edge_c_scaled_normal_;
   T edge_c_denominator_{};
-  Vec3 edge_e_direction_, edge_e_normal_;
+  Vec3 edge_e_direction_, edge_e_normal_, edge_e_scaled_normal_;
   T edge_e_denominator_{};
   detail::PlaneSet<T> cutoff_planes_;
 };
