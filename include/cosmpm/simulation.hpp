@@ -615,6 +615,11 @@ class Simulation {
   int threads() const {
     return threads_;
   }
+  // Local damping can change between phases (e.g. damped settling, then undamped cutting).
+  void set_damping(double damping) {
+    require_in_range("Simulation::set_damping", "damping", damping, 0.0, 1.0, Bounds::left_closed);
+    parameters_.damping = damping;
+  }
   // For restarts: the clock is part of the checkpointed state.
   void set_clock(double time, std::int64_t step_count) {
     time_ = time;
