@@ -343,3 +343,29 @@ TEST_CASE("MohrCoulomb: drained plane-strain biaxial compression reaches the ana
     CHECK(stress[0] - stress[1] == doctest::Approx((k - 1) * confining).epsilon(1e-8));
   }
 }
+
+TEST_CASE("MohrCoulomb: the scalar hot path equals the general principal-space path") {
+  // update() has its own scalar code for the closed-form regions; update_region() goes through
+  // principal_return() and the spectral helpers. Both must give the same stress and state.
+  std::mt19937_64 rng(23);
+  for (const auto& model :
+       {MohrCoulomb<double>(kE, kNu, kPhi, 2.0), MohrCoulomb<double>(kE, kNu, kPhi, 10.0, 3e3),
+        MohrCoulomb<double>(kE, kNu, kPhi, 2.0, 10e3, 1e3)}) {
+    for (int n = 0; n < 5000; ++n) {
+      const SymTensor2D<double> old = random_stress(rng, 5e3) * 0.1;
+      SymTensor2D<double> trial = random_stress(rng, 5e3);
+      if (n % 20 == 0) trial[3] = 0;                       // principal axes along x, y
+      if (n % 20 == 1) trial[1] = trial[0], trial[3] = 0;  // equal in-plane trial stresses
+      const SymTensor2D<double> de =
+          testing::increment_to(model.shear_modulus(), model.lame_lambda(), old, trial);
+      SymTensor2D<double> fast = old, general = old;
+      PlasticState fast_state, general_state;
+      model.update(fast, fast_state, de);
+      (void)model.update_region(general, general_state, de);
+      CHECK(testing::relative_difference(fast, general) <= 1e-12);
+      CHECK(fast_state.plastic == general_state.plastic);
+      CHECK(fast_state.plastic_shear_strain ==
+            doctest::Approx(general_state.plastic_shear_strain).epsilon(1e-10));
+    }
+  }
+}
