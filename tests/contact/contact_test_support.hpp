@@ -25,8 +25,8 @@ inline constexpr double youngs_modulus = 1e6;
 inline constexpr double poisson_ratio = 0.3;
 inline constexpr double density = 1000.0;
 
-// Adds particles at rest. (Simulation::add_particles leaves the velocity column as
-// std::vector::resize makes it, and Eigen's default constructor does not zero.)
+// Adds particles at rest, explicitly (the store zeroes new Eigen entries since the contact
+// work; before, add_particles left the velocity uninitialised).
 template <class Sim>
 void add_at_rest(Sim& sim, const particles::Seeding<2>& seeding) {
   const Index first =

@@ -37,7 +37,7 @@ class Store {
   }
 
   void resize(Index count) {
-    std::apply([count](auto&... column) { (column.resize(count), ...); }, columns_);
+    std::apply([count](auto&... column) { (resize_zeroed(column, count), ...); }, columns_);
     size_ = count;
   }
 
@@ -72,6 +72,17 @@ class Store {
     std::size_t found = 0;
     ((std::is_same_v<Tag, Tags> ? (found = index, ++index) : ++index), ...);
     return found;
+  }
+
+  // New entries are zero: vector::resize value-initialises, which for Eigen's fixed-size types
+  // runs a default constructor that leaves the coefficients uninitialised.
+  template <class T>
+  static void resize_zeroed(std::vector<T>& column, Index count) {
+    if constexpr (requires { T::Zero(); }) {
+      column.resize(static_cast<std::size_t>(count), T(T::Zero()));
+    } else {
+      column.resize(static_cast<std::size_t>(count));
+    }
   }
 
   // One column per tag, found by position, so tags sharing a value_type stay distinct.
