@@ -1,0 +1,180 @@
+#!/usr/bin/python3
+"""Plot the output of example_03_flat_blade (one run directory, or several to compare).
+
+usage: /usr/bin/python3 scripts/plot_flat_blade.py RUN_DIR [RUN_DIR ...] [--output DIR]
+
+Writes into the first RUN_DIR (or --output):
+  forces.png        draft and vertical blade force against travel, the 15-35 mm average and
+                    Sokolovski's value (the paper's Figs. 6-8)
+  blade_stress.png  normal and shear stress on the blade against depth at the profile travel,
+                    with Sokolovski's (the paper's Fig. 9); compression positive
+  fields.png        at the frame closest to 15 mm of travel: yield points, shear-strain
+                    intensity J', particle displacement ratio PDR >= 0.15 and, for polar runs,
+                    the Cosserat rotation (the paper's Figs. 11-14), with Sokolovski's slip line
+"""
+import argparse
+import csv
+import pathlib
+import re
+
+import matplotlib
+
+matplotlib.use("Agg")
+import matplotlib.pyplot as plt  # noqa: E402
+import numpy as np  # noqa: E402
+
+
+def read_csv(path):
+    with open(path, newline="") as handle:
+        reader = csv.reader(handle)
+        header = next(reader)
+        rows = [[float(v) for v in row] for row in reader if row]
+    data = np.array(rows) if rows else np.zeros((0, len(header)))
+    return {name: data[:, i] for i, name in enumerate(header)}
+
+
+def label_of(run):
+    summary = read_csv(run / "summary.csv")
+    polar = summary["polar"][0] > 0.5
+    return "%s MPM, h = %.0f mm, %dx%d" % ("polar" if polar else "nonpolar",
+                                          summary["depth_m"][0] * 1000,
+                                          summary["cells_x"][0], summary["cells_y"][0])
+
+
+def plot_forces(runs, output):
+    fig, ax = plt.subplots(figsize=(8, 5))
+    for run in runs:
+        forces = read_csv(run / "forces.csv")
+        summary = read_csv(run / "summary.csv")
+        width = summary["rig_width_m"][0]
+        line, = ax.plot(forces["displacement_m"] * 1000, forces["draft_N_rig"],
+                        label="draft, " + label_of(run))
+        ax.plot(forces["displacement_m"] * 1000, forces["vertical_N_rig"], "--",
+                color=line.get_color(), label="vertical, " + label_of(run))
+        lo, hi = summary["average_from_m"][0] * 1000, summary["average_to_m"][0] * 1000
+        ax.hlines(summary["average_draft_N_per_m"][0] * width, lo, hi, colors=line.get_color(),
+                  linewidth=3, alpha=0.6)
+        ax.axhline(summary["sokolovski_draft_N_per_m"][0] * width, color=line.get_color(),
+                   linestyle=":", label="Sokolovski draft, h = %.0f mm"
+                   % (summary["depth_m"][0] * 1000))
+    first = read_csv(runs[0] / "summary.csv")
+    ax.axvspan(first["average_from_m"][0] * 1000, first["average_to_m"][0] * 1000,
+               color="0.9", zorder=0, label="averaging window")
+    ax.set_xlabel("blade displacement [mm]")
+    ax.set_ylabel("force on the %.0f mm wide rig [N]" % (first["rig_width_m"][0] * 1000))
+    ax.set_title("Flat blade: force the blade applies (draft +x, vertical +y)")
+    ax.grid(True, alpha=0.3)
+    ax.legend(fontsize=7)
+    fig.tight_layout()
+    fig.savefig(output / "forces.png", dpi=130)
+    plt.close(fig)
+
+
+def plot_blade_stress(runs, output):
+    fig, axes = plt.subplots(1, 2, figsize=(9, 5), sharey=True)
+    for run in runs:
+        profile_path = run / "blade_stress.csv"
+        if not profile_path.exists():
+            continue
+        profile = read_csv(profile_path)
+        keep = (profile["depth_m"] >= -1e-9) & (profile["nodes"] > 0)
+        depth = profile["depth_m"][keep] * 1000
+        axes[0].plot(profile["normal_traction_Pa"][keep] / 1000, depth, "o-", ms=3,
+                     label=label_of(run))
+        axes[1].plot(profile["shear_traction_Pa"][keep] / 1000, depth, "o-", ms=3,
+                     label=label_of(run))
+        wall = read_csv(run / "sokolovski_wall.csv")
+        axes[0].plot(wall["normal_pressure_Pa"] / 1000, wall["depth_m"] * 1000, "k--",
+                     label="Sokolovski")
+        axes[1].plot(wall["shear_stress_Pa"] / 1000, wall["depth_m"] * 1000, "k--",
+                     label="Sokolovski")
+    summary = read_csv(runs[0] / "summary.csv")
+    for ax, title in zip(axes, ["normal stress on the blade [kPa] (compression +)",
+                                "shear stress on the blade [kPa] (soil on blade, upward +)"]):
+        ax.set_xlabel(title)
+        ax.grid(True, alpha=0.3)
+    axes[0].set_ylabel("depth below the initial surface [mm]")
+    axes[0].invert_yaxis()
+    axes[0].legend(fontsize=7)
+    fig.suptitle("Blade stresses at %.0f mm of travel" % (summary["profile_at_m"][0] * 1000))
+    fig.tight_layout()
+    fig.savefig(output / "blade_stress.png", dpi=130)
+    plt.close(fig)
+
+
+def plot_fields(run, output):
+    import h5py
+
+    frames = sorted((run / "frames").glob("flat_blade_*.h5"))
+    if len(frames) < 2:
+        return
+    summary = read_csv(run / "summary.csv")
+    start, speed = summary["cutting_start_s"][0], summary["blade_speed_m_per_s"][0]
+    target = 0.015
+    with h5py.File(frames[0], "r") as h5:
+        strain0 = h5["strain"][()]
+        position0 = h5["position"][()]
+    best, best_travel = None, None
+    for path in frames:
+        with h5py.File(path, "r") as h5:
+            travel = (h5.attrs["time"] - start) * speed
+        if best is None or abs(travel - target) < abs(best_travel - target):
+            best, best_travel = path, travel
+    with h5py.File(best, "r") as h5:
+        x = h5["position"][()]
+        strain = h5["strain"][()] - strain0
+        plastic = h5["plastic"][()] if "plastic" in h5 else np.zeros(len(x))
+        rotation = h5["micro_rotation"][()] if "micro_rotation" in h5 else None
+    exx, eyy, exy = strain[:, 0], strain[:, 1], strain[:, 3]
+    if strain.shape[1] == 7:  # Cosserat: the symmetric part of the shear
+        exy = 0.5 * (strain[:, 3] + strain[:, 4])
+    j2 = ((exx - eyy) ** 2 + eyy ** 2 + exx ** 2) / 6.0 + exy ** 2  # the paper's J'
+    pdr = np.linalg.norm(x - position0, axis=1) / max(best_travel, 1e-12)
+    face = summary["blade_face_x_m"][0] + best_travel
+    depth = summary["depth_m"][0]
+    slip = read_csv(run / "sokolovski_slip_line.csv")
+    panels = [("yield points (plastic in the last step)", plastic, "viridis", (0, 1)),
+              ("shear strain intensity J' since the blade started", j2, "magma",
+               (0, np.percentile(j2, 99))),
+              ("particle displacement ratio PDR >= 0.15", (pdr >= 0.15).astype(float), "Greys",
+               (0, 1.5))]
+    if rotation is not None:
+        panels.append(("Cosserat rotation [rad]", rotation, "coolwarm",
+                       (-np.abs(rotation).max(), np.abs(rotation).max())))
+    fig, axes = plt.subplots(len(panels), 1, figsize=(9, 2.6 * len(panels)), sharex=True)
+    for ax, (title, values, cmap, limits) in zip(np.atleast_1d(axes), panels):
+        art = ax.scatter(x[:, 0], x[:, 1], c=values, s=2, cmap=cmap, vmin=limits[0],
+                         vmax=limits[1], linewidths=0)
+        ax.plot(face + slip["distance_m"], depth - slip["depth_m"], "c-", lw=1.5,
+                label="Sokolovski slip line")
+        ax.axvline(face, color="k", lw=2)
+        ax.set_title(title, fontsize=9)
+        ax.set_aspect("equal")
+        ax.set_xlim(face - 0.05, face + 3.0 * depth)
+        ax.set_ylim(0, depth * 1.4)
+        fig.colorbar(art, ax=ax, shrink=0.8)
+    np.atleast_1d(axes)[0].legend(fontsize=7, loc="upper right")
+    fig.suptitle("%s at %.1f mm of travel" % (label_of(run), best_travel * 1000))
+    fig.tight_layout()
+    fig.savefig(output / "fields.png", dpi=130)
+    plt.close(fig)
+
+
+def main():
+    parser = argparse.ArgumentParser(description=__doc__,
+                                     formatter_class=argparse.RawDescriptionHelpFormatter)
+    parser.add_argument("runs", nargs="+", type=pathlib.Path)
+    parser.add_argument("--output", type=pathlib.Path)
+    args = parser.parse_args()
+    output = args.output or args.runs[0]
+    output.mkdir(parents=True, exist_ok=True)
+    plot_forces(args.runs, output)
+    plot_blade_stress(args.runs, output)
+    plot_fields(args.runs[0], output)
+    for name in ("forces.png", "blade_stress.png", "fields.png"):
+        if (output / name).exists():
+            print("wrote", output / name)
+
+
+if __name__ == "__main__":
+    main()
