@@ -173,10 +173,10 @@ class CosseratDruckerPrager {
         const T g2 = (T(0.75) * df * df * inverse_f - T(0.5) * d2f) * inverse_f * inverse_root;
         const T step = -2 * g_value * g1 / (2 * g1 * g1 - g_value * g2);
         const T next = std::max(x + step, lo);
-        // With cubic convergence a step below 1e-6 of the scale of the u_j leaves an error
-        // below ~1e-16 after it: take it and stop. (A test relative to x alone would chase
-        // rounding noise when x is tiny.)
-        if (!(std::abs(next - x) > T(1e-6) * (x + scale))) return next;
+        // With cubic convergence (constant ~ 1 on this scale) a step below 3e-5 of the scale of
+        // the u_j leaves a relative error of order 1e-14 after it: take it and stop. (A test
+        // relative to x alone would chase rounding noise when x is tiny.)
+        if (!(std::abs(next - x) > T(3e-5) * (x + scale))) return next;
         x = next;
       }
       return x;
