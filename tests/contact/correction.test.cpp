@@ -1,0 +1,92 @@
+// The nodal correction of RigidContact by hand: a single node of material on a rigid floor
+// (face y = 0, outward normal +y), one grid cell of 1 m, dt = 0.1 s, node mass 2 kg.
+#include <doctest/doctest.h>
+
+#include <vector>
+
+#include "contact_test_support.hpp"
+
+namespace {
+using namespace cosmpm;
+
+struct OneNode {
+  grid::Grid<2> grid{Vec<2>(-2.0, -2.0), Vec<2>(4.0, 4.0), {4, 4}};
+  std::vector<double> mass = std::vector<double>(25, 0.0);
+  std::vector<Vec<2>> velocity = std::vector<Vec<2>>(25, Vec<2>::Zero());
+  std::vector<double> spin = std::vector<double>(25, 0.0);
+  Index node = grid.node_index({2, 2});  // at the origin, on the floor's face
+  contact::RigidContact<2> law;
+
+  OneNode(const contact::Interface& interface, const Vec<2>& body_velocity, double omega = 0.0) {
+    // Floor [-1.5, 1.5] x [-1, 0], reference point (0, -0.5).
+    law.add_body(contact::RigidBody<2>::box(Vec<2>(-1.5, -1.0), Vec<2>(1.5, 0.0))
+                     .set_velocity(body_velocity)
+                     .set_angular_velocity(omega),
+                 interface);
+    mass[static_cast<std::size_t>(node)] = 2.0;
+    // Material above the node, so the mass grows upwards (away from the floor).
+    mass[static_cast<std::size_t>(grid.node_index({2, 3}))] = 4.0;
+  }
+  Vec<2> correct(const Vec<2>& trial) {
+    velocity[static_cast<std::size_t>(node)] = trial;
+    contact::GridView<2> view{grid,  mass, velocity, 1e-12, 0.1, 0.0, contact::Phase::end_velocity,
+                              &spin, 1.0};
+    law.correct(view);
+    return velocity[static_cast<std::size_t>(node)];
+  }
+};
+
+}  // namespace
+
+TEST_CASE("correction: Coulomb slip reduces the tangential velocity by mu |v_n|") {
+  // v = (1, -1): v_n = -1 (approach), v_t = 1 > mu |v_n| = 0.5 -> v = (1 - 0.5, 0) = (0.5, 0).
+  OneNode one(contact::Interface::coulomb(0.5), Vec<2>::Zero());
+  CHECK(one.correct(Vec<2>(1.0, -1.0)).isApprox(Vec<2>(0.5, 0.0)));
+  REQUIRE(one.law.contact_nodes().size() == 1);
+  const auto& r = one.law.contact_nodes()[0];
+  CHECK(r.state == contact::NodeState::slip);
+  CHECK(r.normal.isApprox(Vec<2>(0.0, 1.0)));
+  // Force on the material m (v_new - v) / dt = 2 (-0.5, 1) / 0.1 = (-10, 20) N; the normal
+  // part 20 N pushes, the shear part along the top edge's tangent (-x, edge 2 runs from the
+  // upper-right to the upper-left corner) is +10 N; Coulomb: |shear| = mu * normal.
+  CHECK(r.edge == 2);
+  CHECK(r.force_on_material.isApprox(Vec<2>(-10.0, 20.0)));
+  CHECK(r.normal_force == doctest::Approx(20.0));
+  CHECK(r.shear_force == doctest::Approx(10.0));
+  CHECK(one.law.force_on_body(0).isApprox(Vec<2>(10.0, -20.0)));
+}
+
+TEST_CASE("correction: stick when |v_t| <= mu |v_n|, free separation, no-slip") {
+  OneNode stick(contact::Interface::coulomb(2.0), Vec<2>::Zero());
+  CHECK(stick.correct(Vec<2>(1.0, -1.0)).isZero());  // 1 <= 2 * 1: stuck to the floor
+  CHECK(stick.law.contact_nodes()[0].state == contact::NodeState::stick);
+  // Separating (v_n = +1): untouched, zero force.
+  CHECK(stick.correct(Vec<2>(1.0, 1.0)).isApprox(Vec<2>(1.0, 1.0)));
+  CHECK(stick.law.force_on_material(0).isZero());
+  CHECK(stick.law.contact_nodes()[0].state == contact::NodeState::separating);
+  // No-slip: the body's velocity whatever the material does, separating included.
+  OneNode glued(contact::Interface::no_slip(), Vec<2>(0.3, 0.0));
+  CHECK(glued.correct(Vec<2>(1.0, 1.0)).isApprox(Vec<2>(0.3, 0.0)));
+}
+
+TEST_CASE("correction: relative to a moving and rotating body") {
+  // Floor moving at (0.2, 0) and turning at omega = 0.4 rad/s about (0, -0.5): at the node
+  // (0, 0) the body's material moves at (0.2, 0) + 0.4 * (-0.5, 0) = (0, 0). Taking
+  // omega = 0 instead, V = (0.2, 0): v = (1, -1) relative (0.8, -1), slip with mu = 0.5 ->
+  // relative (0.8 - 0.5, 0) -> v = (0.5, 0).
+  OneNode moving(contact::Interface::coulomb(0.5), Vec<2>(0.2, 0.0));
+  CHECK(moving.correct(Vec<2>(1.0, -1.0)).isApprox(Vec<2>(0.5, 0.0)));
+  OneNode turning(contact::Interface::coulomb(0.5).with_rotation_held(), Vec<2>(0.2, 0.0), 0.4);
+  // Relative (1, -1) as for the still floor -> (0.5, 0).
+  CHECK(turning.correct(Vec<2>(1.0, -1.0)).isApprox(Vec<2>(0.5, 0.0)));
+  // The Cosserat spin of a node in contact is held at the body's angular velocity.
+  CHECK(turning.spin[static_cast<std::size_t>(turning.node)] == doctest::Approx(0.4));
+}
+
+TEST_CASE("correction: node reach per kernel") {
+  // Support radius of a node's basis function in cells.
+  CHECK(contact::node_reach<shape::Linear>() == 1.0);
+  CHECK(contact::node_reach<shape::GIMP>() == 1.0);
+  CHECK(contact::node_reach<shape::QuadraticBSpline>() == 1.5);
+  CHECK(contact::node_reach<shape::CubicBSpline>() == 2.0);
+}
