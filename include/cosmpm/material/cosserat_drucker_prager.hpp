@@ -69,6 +69,7 @@ class CosseratDruckerPrager {
     mode_stiffness_ = {2 * g * (invariant.a1 + invariant.a2),
                        2 * elastic_.cosserat_shear * (invariant.a1 - invariant.a2),
                        2 * g * invariant.a3};
+    couple_weight_ = invariant.a3 / (elastic_.length * elastic_.length);
   }
 
   T shear_modulus() const { return elastic_.iso.shear; }
@@ -117,11 +118,10 @@ class CosseratDruckerPrager {
     const T d0 = s[0] - modes.p, d1 = s[1] - modes.p, d2 = s[2] - modes.p;
     const T sym = (s[3] + s[4]) / 2;
     const T skew = (s[3] - s[4]) / 2;
-    const T l2 = elastic_.length * elastic_.length;
     modes.weight[0] =
         (invariant_.a1 + invariant_.a2) * (d0 * d0 + d1 * d1 + d2 * d2 + 2 * sym * sym);
     modes.weight[1] = 2 * (invariant_.a1 - invariant_.a2) * skew * skew;
-    modes.weight[2] = invariant_.a3 * (s[5] * s[5] + s[6] * s[6]) / l2;
+    modes.weight[2] = couple_weight_ * (s[5] * s[5] + s[6] * s[6]);
     return modes;
   }
 
@@ -230,8 +230,13 @@ class CosseratDruckerPrager {
     const T multiplier = solve_multiplier(trial.weight, q_trial, q0, slope);
     const T q = q0 + slope * multiplier;
     const T p = trial.p - bulk * coefficients_.beta * multiplier;
-    std::array<T, 3> scale{};
-    for (int j = 0; j < 3; ++j) scale[j] = q / (q + mode_stiffness_[j] * multiplier);
+    // scale_j = q / (q + c_j dlambda), the three from one division.
+    const T v0 = q + mode_stiffness_[0] * multiplier;
+    const T v1 = q + mode_stiffness_[1] * multiplier;
+    const T v2 = q + mode_stiffness_[2] * multiplier;
+    const T q_over_product = q / (v0 * v1 * v2);
+    const std::array<T, 3> scale{v1 * v2 * q_over_product, v0 * v2 * q_over_product,
+                                 v0 * v1 * q_over_product};
     const T sym = scale[0] * (stress[3] + stress[4]) / 2;
     const T skew = scale[1] * (stress[3] - stress[4]) / 2;
     for (int i = 0; i < 3; ++i) stress[i] = scale[0] * (stress[i] - trial.p) + p;
@@ -289,6 +294,7 @@ class CosseratDruckerPrager {
   CosseratInvariantCoefficients<T> invariant_;
   DruckerPragerMatching matching_;
   std::array<T, 3> mode_stiffness_{};  // c_j: how fast each mode shrinks with dlambda
+  T couple_weight_{};                  // a3 / l^2
 };
 
 static_assert(ConstitutiveModel<CosseratDruckerPrager<double>>);
