@@ -3,6 +3,7 @@
 // updated from the velocity gradient of a step.
 #include <tuple>
 
+#include "cosmpm/continuum/particle_fields.hpp"
 #include "cosmpm/continuum/rates.hpp"
 #include "cosmpm/core/types.hpp"
 #include "cosmpm/material/concept.hpp"
@@ -17,14 +18,7 @@ requires(!Model::is_cosserat) struct Classical {
   static constexpr bool is_cosserat = false;
 
   template <int Dim>
-  using particle_store =
-      particles::Store<particles::field::Position<Dim>, particles::field::InitialPosition<Dim>,
-                       particles::field::Velocity<Dim>, particles::field::Mass,
-                       particles::field::Volume, particles::field::InitialVolume,
-                       particles::field::HalfWidth<Dim>, particles::field::VelocityGradient<Dim>,
-                       particles::field::DeformationGradient<Dim>, particles::field::Body,
-                       particles::field::Stress<Model>, particles::field::Strain<Model>,
-                       particles::field::MaterialState<Model>>;
+  using particle_store = particle_store_with<Dim, Model>;
 
   template <int Dim>
   using rates_type = ParticleRates<Dim, false>;

@@ -8,6 +8,7 @@
 //   rho J d^2 omega_3 / dt^2 = d m_3i / dx_i + s_xy - s_yx.
 // Their weak forms give, per particle of volume V and node shape function N:
 //   f_j = -V s_ij dN/dx_i,   moment = -V m_3i dN/dx_i + V (s_xy - s_yx) N.
+#include "cosmpm/continuum/particle_fields.hpp"
 #include "cosmpm/continuum/rates.hpp"
 #include "cosmpm/core/types.hpp"
 #include "cosmpm/material/concept.hpp"
@@ -23,14 +24,8 @@ requires(Model::is_cosserat) struct Cosserat {
 
   template <int Dim>
   using particle_store =
-      particles::Store<particles::field::Position<Dim>, particles::field::InitialPosition<Dim>,
-                       particles::field::Velocity<Dim>, particles::field::Mass,
-                       particles::field::Volume, particles::field::InitialVolume,
-                       particles::field::HalfWidth<Dim>, particles::field::VelocityGradient<Dim>,
-                       particles::field::DeformationGradient<Dim>, particles::field::Body,
-                       particles::field::Stress<Model>, particles::field::Strain<Model>,
-                       particles::field::MaterialState<Model>, particles::field::MicroRotation,
-                       particles::field::MicroSpin, particles::field::MicroInertia>;
+      particle_store_with<Dim, Model, particles::field::MicroRotation, particles::field::MicroSpin,
+                          particles::field::MicroInertia>;
 
   template <int Dim>
   using rates_type = ParticleRates<Dim, true>;
