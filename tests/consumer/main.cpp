@@ -15,8 +15,7 @@ int main() {
   sim.boundary_conditions().set(grid::BoundaryConditions<2>::face(1, false),
                                 grid::BoundaryKind::fixed);
   const double dt = sim.time_step();
-  for (int i = 0; i < 10; ++i)
-    sim.step(dt);
+  for (int i = 0; i < 10; ++i) sim.step(dt);
   std::printf("cosmpm %d.%d.%d consumer: %ld particles, t = %g s\n", version_major, version_minor,
               version_patch, static_cast<long>(sim.particles().size()), sim.time());
   return 0;
