@@ -64,6 +64,12 @@ double total_mass(const Sim& sim) {
   return mass;
 }
 
+// |value - expected| <= tolerance * |expected| (doctest's Approx adds an absolute 1.0 to its
+// scale, too loose for values of order one).
+inline bool within_relative(double value, double expected, double tolerance) {
+  return std::abs(value - expected) <= tolerance * std::abs(expected);
+}
+
 // Least-squares slope of y(t).
 inline double fitted_slope(const std::vector<double>& t, const std::vector<double>& y) {
   double tm = 0.0;

@@ -21,7 +21,27 @@ struct PushRun {
   Vec<2> final_momentum = Vec<2>::Zero();
   double block_mass = 0.0;
   double profile_balance = 0.0;  // |sum traction * width - edge force| / |edge force|
+  double energy_ratio = 0.0;     // max over the run of E / E_0 in the wall's frame
 };
+
+// Kinetic energy relative to the wall plus elastic strain energy 1/2 sigma : eps V (the
+// stress starts at zero). In the frame of a wall moving at constant velocity the wall is
+// still, so contact can only take energy out: E <= E_0 = 1/2 M |V|^2.
+template <class Sim>
+double energy_in_wall_frame(const Sim& sim, const Vec<2>& wall_velocity) {
+  const auto& v = sim.particles().template get<particles::field::Velocity<2>>();
+  const auto& m = sim.particles().template get<particles::field::Mass>();
+  const auto& s = sim.particles().template get<particles::field::Stress<test::Elastic>>();
+  const auto& e = sim.particles().template get<particles::field::Strain<test::Elastic>>();
+  const auto& vol = sim.particles().template get<particles::field::Volume>();
+  double energy = 0.0;
+  for (Index p = 0; p < sim.particles().size(); ++p) {
+    const double work =
+        s[p][0] * e[p][0] + s[p][1] * e[p][1] + s[p][2] * e[p][2] + 2.0 * s[p][3] * e[p][3];
+    energy += 0.5 * m[p] * (v[p] - wall_velocity).squaredNorm() + 0.5 * work * vol[p];
+  }
+  return energy;
+}
 
 // Relative mismatch between the traction profile of the wall's front face (edge 1 of the box:
 // normal +x, tangent +y), integrated over its bins, and the forces of the nodes on that edge.
@@ -63,6 +83,7 @@ PushRun push(const Vec<2>& velocity, const contact::Interface& interface, double
   PushRun run;
   run.block_mass = test::total_mass(sim);
   const Vec<2> p0 = test::momentum(sim);
+  const double e0 = energy_in_wall_frame(sim, velocity);
   Vec<2> impulse = Vec<2>::Zero();
   double worst_mismatch = 0.0;
   for (int step = 0; step < 300; ++step) {
@@ -75,6 +96,7 @@ PushRun push(const Vec<2>& velocity, const contact::Interface& interface, double
     run.largest_force = std::max(run.largest_force, force.norm());
     run.closest =
         std::min(run.closest, test::closest_particle_distance(sim, sim.contact().body(0)));
+    run.energy_ratio = std::max(run.energy_ratio, energy_in_wall_frame(sim, velocity) / e0);
     if (force.norm() > 0.0) {
       run.profile_balance = std::max(run.profile_balance, profile_mismatch(sim.contact()));
     }
@@ -101,10 +123,13 @@ TEST_CASE("pushed block: no penetration, contact force = rate of change of momen
     CHECK(run.worst_balance < 1e-9);
     CHECK(run.impulse_error < 1e-9);
     CHECK(run.profile_balance < 1e-12);
-    // The push is real: after 0.08 s the block moves with the wall. Its mean velocity lies
-    // within 25 % of 0.5 m/s (the elastic block rings about the wall speed; the first
-    // compression wave takes 0.2 m / 36.7 m/s = 5.4 ms to cross it).
-    CHECK(run.final_momentum[0] / run.block_mass == doctest::Approx(0.5).epsilon(0.25));
+    // The push is real and bounded: a block hit by a wall moving at V leaves with a mean
+    // velocity between V (perfectly plastic impact) and 2 V (perfectly elastic: in the wall's
+    // frame its speed cannot grow).
+    const double mean_velocity = run.final_momentum[0] / run.block_mass;
+    CAPTURE(mean_velocity);
+    CHECK(mean_velocity >= 0.5);
+    CHECK(mean_velocity <= 2.0 * 0.5);
   }
 }
 
@@ -129,8 +154,35 @@ TEST_CASE("pushed block: a wall thinner than a cell does not let the block throu
         Vec<2>(0.5, 0.0), contact::Interface::coulomb(0.3), 0.3, flip);
     CHECK(run.closest >= 0.0);
     CHECK(run.worst_balance < 1e-9);
-    CHECK(run.final_momentum[0] / run.block_mass == doctest::Approx(0.5).epsilon(0.25));
   }
+  // The block never touches the back face, so its motion must not depend on the thickness:
+  // same run with a wall 2 cells thick, to round-off. (Taking the nearest face's normal at the
+  // nodes inside and behind the thin wall instead, the two runs differ by 0.1 m/s in the mean
+  // velocity and the energy in the wall's frame triples; checked by hand.)
+  const PushRun thin = push<shape::Linear, integrator::MUSL>(
+      Vec<2>(0.5, 0.0), contact::Interface::coulomb(0.3), 0.3, 1.0);
+  const PushRun thick = push<shape::Linear, integrator::MUSL>(
+      Vec<2>(0.5, 0.0), contact::Interface::coulomb(0.3), 2.0, 1.0);
+  CHECK((thin.final_momentum - thick.final_momentum).norm() <= 1e-9 * thick.final_momentum.norm());
+}
+
+TEST_CASE("pushed block: contact does no work in the wall's frame") {
+  // E <= E_0 (tolerance 1e-9 relative) for frictionless and frictional walls. The runs use
+  // FLIP 0.99 with the linear kernel: pure FLIP there gains up to 15 % (V = 0.5 m/s) by itself
+  // from cell-crossing noise, which PIC, FLIP 0.99 and GIMP all remove (with them the maximum
+  // is below 0.96 E_0).
+  for (double mu : {0.0, 0.3}) {
+    CAPTURE(mu);
+    for (double thickness : {0.3, 2.0}) {
+      CAPTURE(thickness);
+      const PushRun run = push<shape::Linear, integrator::MUSL>(
+          Vec<2>(0.5, 0.0), contact::Interface::coulomb(mu), thickness, 0.99);
+      CHECK(run.energy_ratio <= 1.0 + 1e-9);
+    }
+  }
+  const PushRun gimp = push<shape::GIMP, integrator::USL>(
+      Vec<2>(0.5, 0.0), contact::Interface::coulomb(0.3), 0.3, 1.0);
+  CHECK(gimp.energy_ratio <= 1.0 + 1e-9);
 }
 
 TEST_CASE("pushed block: USL with GIMP keeps the same guarantees") {
