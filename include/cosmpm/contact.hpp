@@ -3,3 +3,4 @@
 #include "cosmpm/contact/rigid_body.hpp"
 #include "cosmpm/contact/rigid_contact.hpp"
 #include "cosmpm/contact/single_field.hpp"
+#include "cosmpm/contact/traction_average.hpp"
