@@ -121,6 +121,15 @@ class RigidBody<2> {
     update_world();
   }
 
+  // Places the body (restarts): reference point and rotation from the input pose.
+  void set_pose(const Vec<2>& reference_point, double angle) {
+    require(reference_point.allFinite() && std::isfinite(angle),
+            "contact::RigidBody::set_pose: the pose must be finite");
+    reference_ = reference_point;
+    angle_ = angle;
+    update_world();
+  }
+
   // --- geometry -------------------------------------------------------------------------
   const Vec<2>& reference_point() const { return reference_; }
   double angle() const { return angle_; }  // radians, counter-clockwise from the input pose

@@ -162,6 +162,28 @@ class RigidContact {
     return bins;
   }
 
+  // --- checkpoints (io/checkpoint.hpp): the bodies' poses, 3 values per body -------------
+  std::vector<double> checkpoint_values() const {
+    std::vector<double> values;
+    values.reserve(3 * bodies_.size());
+    for (const auto& e : bodies_) {
+      values.push_back(e.body.reference_point()[0]);
+      values.push_back(e.body.reference_point()[1]);
+      values.push_back(e.body.angle());
+    }
+    return values;
+  }
+  void restore_checkpoint_values(const std::vector<double>& values) {
+    if (values.size() != 3 * bodies_.size()) {
+      throw Error("contact::RigidContact::restore_checkpoint_values: " +
+                  std::to_string(values.size()) + " values for " + std::to_string(bodies_.size()) +
+                  " bodies (valid: 3 per body, " + std::to_string(3 * bodies_.size()) + ")");
+    }
+    for (std::size_t b = 0; b < bodies_.size(); ++b) {
+      bodies_[b].body.set_pose(Vec<Dim>(values[3 * b], values[3 * b + 1]), values[3 * b + 2]);
+    }
+  }
+
   // --- the contact-policy interface ----------------------------------------------------
   void correct(GridView<Dim>& view) {
     const bool record = view.phase == Phase::end_velocity;
