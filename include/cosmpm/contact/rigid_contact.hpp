@@ -10,6 +10,15 @@
 // The nodal force on the material m_i (v_corrected - v_trial) / dt is recorded in the
 // end-of-step phase, per node (normal and shear parts relative to the body's face) and in
 // total; the force on the body is its negative. See docs/theory/mpm.md, "## Contact".
+//
+//   contact::RigidContact<2> law;
+//   const int blade = law.add_body(
+//       contact::RigidBody<2>::box(lower, upper).set_velocity(Vec<2>(0.01, 0.0)),
+//       contact::Interface::coulomb_angle(14.0));
+//   Simulation<2, shape::Linear, Continuum, contact::RigidContact<2>> sim(grid, model, p, law);
+//   sim.step(dt);
+//   sim.contact().force_on_material(blade);        // (draft, vertical) on the soil, N/m
+//   sim.contact().traction_profile(blade, 1);      // bins along the right face (edge 1)
 #include <algorithm>
 #include <array>
 #include <cmath>
@@ -123,8 +132,8 @@ class RigidContact {
   // the forces of the nodes attributed to the edge, binned by their foot point along it and
   // divided by the bin width (the node's tributary length). Bins are centred where grid lines
   // cross the edge when it is axis-aligned, so each bin holds one row of nodes. bin_width = 0
-  // means the cell size along the edge. Sum of traction * width over the bins = the edge's
-  // total force.
+  // means the cell size along the edge (|t_x| h_x + |t_y| h_y for the edge's unit tangent t).
+  // Sum of traction * width over the bins = the edge's total force.
   std::vector<TractionBin> traction_profile(int b, int edge, double bin_width = 0.0) const {
     const auto& e = entry(b);
     require_in_range("contact::RigidContact::traction_profile", "edge", edge, 0,
