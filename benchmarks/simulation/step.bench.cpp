@@ -3,8 +3,14 @@
 // items_per_second is particle-steps per second.
 #include <benchmark/benchmark.h>
 
+#include <type_traits>
+
 #include "cosmpm/continuum/classical.hpp"
+#include "cosmpm/continuum/cosserat.hpp"
+#include "cosmpm/material/cosserat_drucker_prager.hpp"
+#include "cosmpm/material/cosserat_elastic.hpp"
 #include "cosmpm/material/linear_elastic.hpp"
+#include "cosmpm/material/mohr_coulomb.hpp"
 #include "cosmpm/particles/seeding.hpp"
 #include "cosmpm/shape.hpp"
 #include "cosmpm/simulation.hpp"
@@ -13,14 +19,32 @@ namespace {
 using namespace cosmpm;
 using Elastic = material::LinearElastic<>;
 
-template <class Kernel, class Scheme = integrator::USL>
+// The soil models of the flat blade, with the paper's corn (Table 1).
+Elastic make_model(std::type_identity<Elastic>) {
+  return Elastic(2.76e6, 0.2);
+}
+material::MohrCoulomb<> make_model(std::type_identity<material::MohrCoulomb<>>) {
+  return material::MohrCoulomb<>(2.76e6, 0.2, 26.0, 2.0);
+}
+material::CosseratElastic<> make_model(std::type_identity<material::CosseratElastic<>>) {
+  return material::CosseratElastic<>(2.76e6, 0.2, 2.3e6, 0.01);
+}
+material::CosseratDruckerPrager<> make_model(
+    std::type_identity<material::CosseratDruckerPrager<>>) {
+  return material::CosseratDruckerPrager<>(2.76e6, 0.2, 2.3e6, 0.01, 26.0, 2.0);
+}
+
+template <class Kernel, class Scheme = integrator::USL,
+          class Continuum = continuum::Classical<Elastic>>
 auto make_block(int threads) {
-  using Sim = Simulation<2, Kernel, continuum::Classical<Elastic>, contact::SingleField, Scheme>;
+  using Sim = Simulation<2, Kernel, Continuum, contact::SingleField, Scheme>;
+  using Model = typename Continuum::model_type;
   const grid::Grid<2> grid(Vec<2>(0.0, 0.0), Vec<2>(1.2, 0.5), {120, 50});
   SimulationParameters<2> parameters;
   parameters.gravity = Vec<2>(0.0, -9.81);
   parameters.threads = threads;
-  Sim sim(grid, Elastic(2.76e6, 0.2), parameters);
+  if constexpr (Continuum::is_cosserat) parameters.micro_inertia = 12.5e-6;
+  Sim sim(grid, make_model(std::type_identity<Model>{}), parameters);
   // Keep the particles a cell away from the side faces, where the splines' boundary
   // treatment would otherwise differ from the interior's.
   const auto seeding = particles::seed_box(grid, Vec<2>(0.0, 0.0), Vec<2>(1.2, 0.35), 2);
@@ -34,9 +58,10 @@ auto make_block(int threads) {
   return sim;
 }
 
-template <class Kernel, class Scheme = integrator::USL>
+template <class Kernel, class Scheme = integrator::USL,
+          class Continuum = continuum::Classical<Elastic>>
 void full_step(benchmark::State& state) {
-  auto sim = make_block<Kernel, Scheme>(static_cast<int>(state.range(0)));
+  auto sim = make_block<Kernel, Scheme, Continuum>(static_cast<int>(state.range(0)));
   const double dt = sim.time_step();
   for (auto _ : state) sim.step(dt);
   state.SetItemsProcessed(state.iterations() * sim.particles().size());
@@ -97,6 +122,18 @@ BENCHMARK(full_step<shape::CubicBSpline>)
     ->Arg(1)
     ->Arg(2)
     ->UseRealTime();
+// Polar against nonpolar: the cost of a Cosserat step (same particles, same scheme).
+BENCHMARK(full_step<shape::Linear, integrator::MUSL, continuum::Classical<material::MohrCoulomb<>>>)
+    ->Name("step/linear/MUSL/mohr_coulomb")
+    ->Arg(1);
+BENCHMARK(full_step<shape::Linear, integrator::MUSL,
+                    continuum::Cosserat<material::CosseratDruckerPrager<>>>)
+    ->Name("step/linear/MUSL/cosserat_drucker_prager")
+    ->Arg(1);
+BENCHMARK(
+    full_step<shape::Linear, integrator::USL, continuum::Cosserat<material::CosseratElastic<>>>)
+    ->Name("step/linear/USL/cosserat_elastic")
+    ->Arg(1);
 BENCHMARK(stage_map_to_grid)->Name("stage/linear/map_to_grid");
 BENCHMARK(stage_update_grid)->Name("stage/linear/update_grid");
 BENCHMARK(stage_map_to_particles)->Name("stage/linear/map_to_particles");

@@ -337,7 +337,7 @@ class Simulation {
     const double empty = empty_node_mass();
     const double damping = parameters_.damping;
     const Index count = grid_.node_count();
-    COSMPM_OMP_PARALLEL_FOR(threads_)
+    COSMPM_OMP_PARALLEL_FOR(threads_, count)
     for (Index n = 0; n < count; ++n) {
       const double m = nodes_.mass[n];
       if (m <= empty) {
@@ -372,7 +372,7 @@ class Simulation {
     // Contact acts on the updated velocity only, so the acceleration (and through FLIP the
     // particles) carries its impulse; boundary conditions come last and win.
     correct_contact(nodes_.velocity, spin_field(nodes_.spin), dt, contact::Phase::end_velocity);
-    COSMPM_OMP_PARALLEL_FOR(threads_)
+    COSMPM_OMP_PARALLEL_FOR(threads_, count)
     for (Index n = 0; n < count; ++n) {
       apply_boundary_conditions(n, nodes_.momentum[n]);
       apply_boundary_conditions(n, nodes_.velocity[n]);
@@ -407,7 +407,7 @@ class Simulation {
     const Index count = particles_.size();
     Index first_outside = count;
     Index first_bad = count;
-    COSMPM_OMP_PARALLEL_FOR(threads_)
+    COSMPM_OMP_PARALLEL_FOR(threads_, count)
     for (Index p = 0; p < count; ++p) {
       stencil_type s;
       s.compute(grid_, x[p], half[p]);
@@ -544,7 +544,7 @@ class Simulation {
     const auto& half = particles_.template get<particles::field::HalfWidth<Dim>>();
     const Index count = particles_.size();
     particle_rates_.resize(count);
-    COSMPM_OMP_PARALLEL_FOR(threads_)
+    COSMPM_OMP_PARALLEL_FOR(threads_, count)
     for (Index p = 0; p < count; ++p) {
       stencil_type s;
       s.compute(grid_, start[p], half[p]);
@@ -567,7 +567,7 @@ class Simulation {
             "Simulation::update_stress: call velocity_gradient_from_grid first");
     const Index count = particles_.size();
     Index first_bad = count;
-    COSMPM_OMP_PARALLEL_FOR(threads_)
+    COSMPM_OMP_PARALLEL_FOR(threads_, count)
     for (Index p = 0; p < count; ++p) {
       if (!update_particle_stress(p, particle_rates_[p], dt)) record_first(first_bad, p);
     }
@@ -789,7 +789,7 @@ class Simulation {
   void for_each_particle_coloured(F&& f) {
     const Index block_total = static_cast<Index>(block_start_.size()) - 1;
     for (int colour = 0; colour < (1 << Dim); ++colour) {
-      COSMPM_OMP_PARALLEL_FOR(threads_)
+      COSMPM_OMP_PARALLEL_FOR(threads_, particles_.size())
       for (Index block = 0; block < block_total; ++block) {
         if (block_colour(block) != colour) continue;
         for (Index i = block_start_[block]; i < block_start_[block + 1]; ++i) f(order_[i]);

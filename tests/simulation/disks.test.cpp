@@ -18,9 +18,9 @@ struct Disks {
   Sim sim;
   Index second_body_first = 0;
 
-  explicit Disks(int threads)
-      : sim(grid::Grid<2>(Vec<2>(0.0, 0.0), Vec<2>(1.0, 1.0), {20, 20}), test::Elastic(1000.0, 0.3),
-            make_parameters(threads)) {
+  explicit Disks(int threads, Index cells = 20)
+      : sim(grid::Grid<2>(Vec<2>(0.0, 0.0), Vec<2>(1.0, 1.0), {cells, cells}),
+            test::Elastic(1000.0, 0.3), make_parameters(threads)) {
     const auto& g = sim.grid();
     const auto lower = particles::seed_disk(g, Vec<2>(0.25, 0.25), 0.2, 2);
     const auto upper = particles::seed_disk(g, Vec<2>(0.75, 0.75), 0.2, 2);
@@ -77,10 +77,13 @@ TEST_CASE("two elastic disks collide and rebound with energy bounded") {
 }
 
 TEST_CASE("results do not depend on the thread count (bit for bit)") {
-  Disks<integrator::USL> one(1);
-  Disks<integrator::USL> two(2);
+  // 64 x 64 cells: about 4,100 particles and 4,225 nodes, above cosmpm::parallel_threshold,
+  // so the two-thread run really runs its loops on two threads.
+  Disks<integrator::USL> one(1, 64);
+  Disks<integrator::USL> two(2, 64);
+  REQUIRE(one.sim.particles().size() >= cosmpm::parallel_threshold);
   const double dt = one.sim.time_step();
-  for (int i = 0; i < 400; ++i) {
+  for (int i = 0; i < 1300; ++i) {  // past first contact at about 1.1 s
     one.sim.step(dt);
     two.sim.step(dt);
   }
@@ -89,8 +92,12 @@ TEST_CASE("results do not depend on the thread count (bit for bit)") {
   const auto& s1 = one.sim.particles().template get<particles::field::Stress<test::Elastic>>();
   const auto& s2 = two.sim.particles().template get<particles::field::Stress<test::Elastic>>();
   bool identical = true;
+  double largest_stress = 0.0;
   for (Index p = 0; p < one.sim.particles().size(); ++p) {
     identical = identical && x1[p] == x2[p] && s1[p] == s2[p];
+    largest_stress = std::max(largest_stress, s1[p].cwiseAbs().maxCoeff());
   }
+  CHECK(two.sim.threads() == 2);
+  CHECK(largest_stress > 1.0);  // the disks have met: the comparison covers stressed states
   CHECK(identical);
 }
