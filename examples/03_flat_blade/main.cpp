@@ -202,6 +202,8 @@ Outcome run(const flat_blade::Case& c, const fs::path& out) {
     }
   }
   progress.finish(sim.time(), sim.step_count());
+  // The end of travel always gets a frame, even when rounding left it just short.
+  if (frames && next_frame - c.frame_interval < c.travel - 1e-9) frames->write(sim);
 
   Outcome outcome;
   const double averaged = static_cast<double>(averaged_steps);
