@@ -32,6 +32,9 @@ struct Case {
   double characteristic_length = 0.01;  // m
   double micro_inertia = 12.5e-6;       // m^2
   bool blade_rotation_fixed = true;     // omega = 0 at the blade (the paper's default)
+  // How the Cosserat Drucker-Prager cone is fitted to phi and psi: plane-strain-per-angle
+  // (our reading of Tejchman, the default), plane-strain, outer or inner.
+  std::string cone = "plane-strain-per-angle";
   // Geometry (Sect. 2): rig 1.2 m x 0.7 m, blade 350 mm high moving at 10 mm/s.
   double grid_length = 1.2;  // m
   double grid_height = 0.7;  // m
@@ -65,6 +68,7 @@ struct Case {
     name << "h" << std::lround(soil_depth * 1000) << "_" << cells_x << "x" << cells_y << "_"
          << (polar ? "polar" : "nonpolar") << "_psi" << dilatancy_angle_deg;
     if (polar) name << (blade_rotation_fixed ? "_wfixed" : "_wfree");
+    if (polar && cone != "plane-strain-per-angle") name << "_" << cone;
     return name.str();
   }
 };
@@ -105,6 +109,13 @@ class Parser {
     number("length-scale", c.characteristic_length);
     number("micro-inertia", c.micro_inertia);
     flag("blade-rotation-fixed", c.blade_rotation_fixed);
+    setters_["cone"] = [&c](const std::string& v, const std::string& where) {
+      if (v != "plane-strain-per-angle" && v != "plane-strain" && v != "outer" && v != "inner") {
+        throw cosmpm::Error(where + ": cone '" + v +
+                            "' is not one of plane-strain-per-angle, plane-strain, outer, inner");
+      }
+      c.cone = v;
+    };
     number("grid-length", c.grid_length);
     number("grid-height", c.grid_height);
     integer("cells-x", c.cells_x);

@@ -53,9 +53,15 @@ NonpolarSoil make_model(const flat_blade::Case& c, std::false_type) {
 }
 PolarSoil make_model(const flat_blade::Case& c, std::true_type) {
   const double shear = c.youngs_modulus / (2.0 * (1.0 + c.poisson_ratio));
+  using material::DruckerPragerMatching;
+  const DruckerPragerMatching cone = c.cone == "plane-strain" ? DruckerPragerMatching::plane_strain
+                                     : c.cone == "outer"      ? DruckerPragerMatching::outer
+                                     : c.cone == "inner"
+                                         ? DruckerPragerMatching::inner
+                                         : DruckerPragerMatching::plane_strain_per_angle;
   return PolarSoil(c.youngs_modulus, c.poisson_ratio, c.cosserat_shear_ratio * shear,
-                   c.characteristic_length, c.friction_angle_deg, c.dilatancy_angle_deg,
-                   c.cohesion);
+                   c.characteristic_length, c.friction_angle_deg, c.dilatancy_angle_deg, c.cohesion,
+                   {}, cone);
 }
 
 template <class Sim>
