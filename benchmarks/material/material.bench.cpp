@@ -154,17 +154,39 @@ void BM_CosseratElastic(benchmark::State& bench) {
   run(bench, model, view);
 }
 
+// mixed: the Cosserat batch as it is; elastic / plastic: only its states whose trial is
+// elastic / plastic for the model, cycled to fill the batch.
 void BM_CosseratDruckerPrager(benchmark::State& bench) {
-  auto batch = cosserat_batch();
+  static const char* names[] = {"mixed", "elastic", "plastic"};
+  const auto index = static_cast<std::size_t>(bench.range(0));
+  const auto all = cosserat_batch();
   const CosseratDruckerPrager<double> model(kE, kNu, 2 * kG, 0.01, kPhi, kPsi);
+  CosseratBatch batch;
+  for (std::size_t i = 0; i < kCount; ++i) {
+    auto s = all.old[i];
+    PlasticState st;
+    model.update(s, st, all.increment[i]);
+    if (index == 0 || (index == 1) == (st.plastic == 0.0)) {
+      batch.old.push_back(all.old[i]);
+      batch.increment.push_back(all.increment[i]);
+    }
+  }
+  const std::size_t selected = batch.old.size();
   int plastic = 0;
   for (std::size_t i = 0; i < kCount; ++i) {
+    if (i >= selected) {
+      batch.old.push_back(batch.old[i - selected]);
+      batch.increment.push_back(batch.increment[i - selected]);
+    }
     auto s = batch.old[i];
     PlasticState st;
     model.update(s, st, batch.increment[i]);
     plastic += st.plastic == 1.0;
   }
-  bench.SetLabel("plastic fraction " + std::to_string(double(plastic) / double(kCount)));
+  batch.work = batch.old;
+  batch.state.assign(kCount, PlasticState{});
+  bench.SetLabel(std::string(names[index]) + ", plastic fraction " +
+                 std::to_string(double(plastic) / double(kCount)));
   run(bench, model, batch);
 }
 
@@ -174,4 +196,4 @@ BENCHMARK(BM_LinearElastic);
 BENCHMARK(BM_MohrCoulomb)->DenseRange(0, 5);
 BENCHMARK(BM_DruckerPrager);
 BENCHMARK(BM_CosseratElastic);
-BENCHMARK(BM_CosseratDruckerPrager);
+BENCHMARK(BM_CosseratDruckerPrager)->DenseRange(0, 2);
