@@ -186,7 +186,8 @@ class CosseratDruckerPrager {
       const T k5 = 3 * (m2 * m3 - m5);
       const T k6 = T(3.5) * m6 - 2 * m3 * m3 - T(3.75) * m2 * m4 + T(1.6875) * m2 * m2 * m2;
       const T tau = (1 - theta) * inverse_r_mean;
-      const T inverse_phi = 1 + tau * tau * (k2 + tau * (k3 + tau * (k4 + tau * (k5 + tau * k6))));
+      const T tau2 = tau * tau;  // Estrin's scheme: a shorter dependent chain than Horner's
+      const T inverse_phi = 1 + tau2 * ((k2 + tau * k3) + tau2 * ((k4 + tau * k5) + tau2 * k6));
       // `lo` (all c_j = c_max) and `hi` (all c_j = c_min) bracket the root; `scale` is the
       // distance from y = 0 to the nearest pole of F.
       const T lo = (1 - theta) * inverse_rate_max_;
