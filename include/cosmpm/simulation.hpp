@@ -283,11 +283,15 @@ class Simulation {
       s.compute(grid_, x[p], half[p]);
       const double mp = mass[p];
       const Vec<Dim> momentum = mp * v[p];
-      if constexpr (is_cosserat) map_rotation_to_grid(p, s, with_forces);
       if (with_forces) {
         // A local copy: node stores could alias the particle arrays, forcing reloads.
         const stress_type volume_stress = vol[p] * stress[p];
         const Vec<Dim> weight_force = mp * gravity;
+        [[maybe_unused]] double inertia = 0.0, spin_momentum = 0.0;
+        if constexpr (is_cosserat) {
+          inertia = mp * particles_.template get<particles::field::MicroInertia>()[p];
+          spin_momentum = inertia * particles_.template get<particles::field::MicroSpin>()[p];
+        }
         for (int k = 0; k < stencil_type::size; ++k) {
           const Index n = s.node[k];
           const double w = s.weight[k];
@@ -295,8 +299,15 @@ class Simulation {
           node_momentum[n] += w * momentum;
           node_force[n] +=
               w * weight_force - Continuum::stress_divergence_term(volume_stress, s.gradient[k]);
+          if constexpr (is_cosserat) {
+            // The rotational balance shares the stencil loop (one pass over the nodes).
+            nodes_.rotational_inertia[n] += w * inertia;
+            nodes_.spin_momentum[n] += w * spin_momentum;
+            nodes_.moment[n] += Continuum::moment_term(volume_stress, w, s.gradient[k]);
+          }
         }
       } else {
+        if constexpr (is_cosserat) map_rotation_to_grid(p, s);
         for (int k = 0; k < stencil_type::size; ++k) {
           const Index n = s.node[k];
           const double w = s.weight[k];
@@ -426,6 +437,8 @@ class Simulation {
       Vec<Dim> v_grid = Vec<Dim>::Zero();
       Vec<Dim> a_grid = Vec<Dim>::Zero();
       rates_type rates;
+      [[maybe_unused]] double spin_grid = 0.0, spin_acceleration = 0.0;
+      [[maybe_unused]] Vec<Dim> spin_gradient = Vec<Dim>::Zero();
       for (int k = 0; k < stencil_type::size; ++k) {
         const Vec<Dim>& v_node = node_velocity[s.node[k]];
         v_grid += s.weight[k] * v_node;
@@ -433,8 +446,18 @@ class Simulation {
         if constexpr (with_stress_update) {
           rates.velocity_gradient.noalias() += v_node * s.gradient[k].transpose();
         }
+        if constexpr (is_cosserat) {  // the micro-spin shares the stencil loop
+          const double spin_node = nodes_.spin[s.node[k]];
+          spin_grid += s.weight[k] * spin_node;
+          spin_acceleration += s.weight[k] * nodes_.spin_acceleration[s.node[k]];
+          spin_gradient += spin_node * s.gradient[k];
+        }
       }
-      if constexpr (is_cosserat) map_rotation_to_particle(p, s, dt, flip, rates);
+      if constexpr (is_cosserat) {
+        update_particle_rotation(p, dt, flip, spin_grid, spin_acceleration);
+        rates.spin = spin_grid;
+        rates.spin_gradient = spin_gradient;
+      }
       if constexpr (with_stress_update) {
         L[p] = rates.velocity_gradient;
         if (!update_particle_stress(p, rates, dt)) record_first(first_bad, p);
@@ -733,8 +756,8 @@ class Simulation {
     }
   }
 
-  // Cosserat particle-to-grid: rotational inertia, spin momentum and (with forces) moment.
-  void map_rotation_to_grid(Index p, const stencil_type& s, bool with_forces) {
+  // Cosserat particle-to-grid without forces (USF's first map): inertia and spin momentum.
+  void map_rotation_to_grid(Index p, const stencil_type& s) {
     const double mp = particles_.template get<particles::field::Mass>()[p];
     const double inertia = mp * particles_.template get<particles::field::MicroInertia>()[p];
     const double spin_momentum =
@@ -743,7 +766,6 @@ class Simulation {
       nodes_.rotational_inertia[s.node[k]] += s.weight[k] * inertia;
       nodes_.spin_momentum[s.node[k]] += s.weight[k] * spin_momentum;
     }
-    if (with_forces) map_moment_to_grid(p, s);
   }
 
   void map_moment_to_grid(Index p, const stencil_type& s) {
@@ -755,25 +777,12 @@ class Simulation {
     }
   }
 
-  // Cosserat grid-to-particle: spin (PIC/FLIP), micro-rotation, and the spin rates of the
-  // stress update, from the end-of-step nodal spin.
-  void map_rotation_to_particle(Index p, const stencil_type& s, double dt, double flip,
-                                rates_type& rates) {
-    double spin_grid = 0.0, spin_acceleration = 0.0;
-    Vec<Dim> spin_gradient = Vec<Dim>::Zero();
-    for (int k = 0; k < stencil_type::size; ++k) {
-      const double spin_node = nodes_.spin[s.node[k]];
-      spin_grid += s.weight[k] * spin_node;
-      spin_acceleration += s.weight[k] * nodes_.spin_acceleration[s.node[k]];
-      spin_gradient += spin_node * s.gradient[k];
-    }
+  // Cosserat grid-to-particle: spin (PIC/FLIP blend, as the velocity) and micro-rotation.
+  void update_particle_rotation(Index p, double dt, double flip, double spin_grid,
+                                double spin_acceleration) {
     double& spin = particles_.template get<particles::field::MicroSpin>()[p];
     spin = flip * (spin + dt * spin_acceleration) + (1.0 - flip) * spin_grid;
     particles_.template get<particles::field::MicroRotation>()[p] += dt * spin_grid;
-    if constexpr (is_cosserat) {
-      rates.spin = spin_grid;
-      rates.spin_gradient = spin_gradient;
-    }
   }
 
   void apply_boundary_conditions(Index node, Vec<Dim>& velocity) const {
