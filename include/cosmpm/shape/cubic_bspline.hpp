@@ -34,17 +34,7 @@ struct CubicBSpline {
                T(2) / T(3) - s2 + T(0.5) * s2 * s, sixth * t2 * t};
     gradients = {T(-0.5) * s2, T(-2) * t + T(1.5) * t2, T(2) * s - T(1.5) * s2, T(0.5) * t2};
     const Index first = cell - 1;
-    if (first < 0) [[unlikely]] {
-      detail::fold_lower_ghost(weights);
-      detail::fold_lower_ghost(gradients);
-      return 0;
-    }
-    if (first > node_count - 4) [[unlikely]] {
-      detail::fold_upper_ghost(weights);
-      detail::fold_upper_ghost(gradients);
-      return node_count - 4;
-    }
-    return first;
+    return detail::fold_into_grid(first, node_count, weights, gradients);
   }
 };
 

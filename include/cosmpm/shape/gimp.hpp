@@ -45,17 +45,7 @@ struct GIMP {
     gradients[0] = ds_left;  // the left node lies at r = +a
     weights[2] = s_right;
     gradients[2] = -ds_right;  // the right node lies at r = -a
-    if (first < 0) [[unlikely]] {
-      detail::fold_lower_ghost(weights);
-      detail::fold_lower_ghost(gradients);
-      return 0;
-    }
-    if (first > node_count - 3) [[unlikely]] {
-      detail::fold_upper_ghost(weights);
-      detail::fold_upper_ghost(gradients);
-      return node_count - 3;
-    }
-    return first;
+    return detail::fold_into_grid(first, node_count, weights, gradients);
   }
 
  private:

@@ -28,17 +28,7 @@ struct QuadraticBSpline {
     const T right = T(0.5) + d;  // 3/2 - a for the right node (a = 1 - d)
     weights = {T(0.5) * left * left, T(0.75) - d * d, T(0.5) * right * right};
     gradients = {-left, T(-2) * d, right};
-    if (first < 0) [[unlikely]] {
-      detail::fold_lower_ghost(weights);
-      detail::fold_lower_ghost(gradients);
-      return 0;
-    }
-    if (first > node_count - 3) [[unlikely]] {
-      detail::fold_upper_ghost(weights);
-      detail::fold_upper_ghost(gradients);
-      return node_count - 3;
-    }
-    return first;
+    return detail::fold_into_grid(first, node_count, weights, gradients);
   }
 };
 

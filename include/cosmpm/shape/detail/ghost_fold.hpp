@@ -11,6 +11,8 @@
 #include <cstddef>
 #include <utility>
 
+#include "cosmpm/core/types.hpp"
+
 namespace cosmpm::shape::detail {
 
 // The stencil starts one node below the grid (slot 0 is the ghost node -1); afterwards it
@@ -41,6 +43,25 @@ inline void fold_upper_ghost(std::array<T, S>& v) {
   v[0] = T(0);
   v[S - 1] += T(2) * ghost;
   v[S - 2] -= ghost;
+}
+
+// A stencil of S nodes starting at `first` may stick out of the grid by one node at either
+// edge (no kernel reaches further); folds the ghost back and returns the grid's first node.
+template <class T, std::size_t S>
+inline Index fold_into_grid(Index first, Index node_count, std::array<T, S>& weights,
+                            std::array<T, S>& gradients) {
+  if (first < 0) [[unlikely]] {
+    fold_lower_ghost(weights);
+    fold_lower_ghost(gradients);
+    return 0;
+  }
+  const Index last_first = node_count - static_cast<Index>(S);
+  if (first > last_first) [[unlikely]] {
+    fold_upper_ghost(weights);
+    fold_upper_ghost(gradients);
+    return last_first;
+  }
+  return first;
 }
 
 }  // namespace cosmpm::shape::detail
