@@ -52,20 +52,31 @@ struct CosseratElasticity {
     return iso.p_wave() > shear_wave ? iso.p_wave() : shear_wave;
   }
 
-  // stress += D de
+  // stress += D de. All loads before the first store: a store through `stress` may alias the
+  // moduli and the increment as far as the compiler knows, and would force reloads. Scalar
+  // loads: a 16-byte load across two earlier stores of the stress would stall.
   template <class V>
   void add_elastic(V& stress, const Eigen::Matrix<T, 7, 1>& de) const {
-    const T volumetric = iso.lambda * (de[0] + de[1] + de[2]);
     const T g2 = 2 * iso.shear;
-    stress[0] += volumetric + g2 * de[0];
-    stress[1] += volumetric + g2 * de[1];
-    stress[2] += volumetric + g2 * de[2];
     const T plus = iso.shear + cosserat_shear;
     const T minus = iso.shear - cosserat_shear;
-    stress[3] += plus * de[3] + minus * de[4];
-    stress[4] += plus * de[4] + minus * de[3];
-    stress[5] += bending_modulus() * de[5];
-    stress[6] += bending_modulus() * de[6];
+    const T bending = g2 * length * length;
+    const T d0 = de[0], d1 = de[1], d2 = de[2], d3 = de[3], d4 = de[4], d5 = de[5], d6 = de[6];
+    const T volumetric = iso.lambda * (d0 + d1 + d2);
+    const T s0 = stress[0] + (volumetric + g2 * d0);
+    const T s1 = stress[1] + (volumetric + g2 * d1);
+    const T s2 = stress[2] + (volumetric + g2 * d2);
+    const T s3 = stress[3] + (plus * d3 + minus * d4);
+    const T s4 = stress[4] + (plus * d4 + minus * d3);
+    const T s5 = stress[5] + bending * d5;
+    const T s6 = stress[6] + bending * d6;
+    stress[0] = s0;
+    stress[1] = s1;
+    stress[2] = s2;
+    stress[3] = s3;
+    stress[4] = s4;
+    stress[5] = s5;
+    stress[6] = s6;
   }
 
   Eigen::Matrix<T, 7, 7> tangent() const {
