@@ -264,3 +264,51 @@ TEST_CASE("CosseratDruckerPrager: plane-strain biaxial compression reaches the m
     }
   }
 }
+
+TEST_CASE("CosseratDruckerPrager: Gc = 0 with a1 != a2 and psi = 0 (a mode that never shrinks)") {
+  // With Gc = 0 the skew mode has no stiffness (c_1 = 2 Gc (a1 - a2) = 0) and with psi = 0 the
+  // cone does not move (alpha beta K = 0), so its rate r_1 is zero: the skew stress keeps its
+  // old value and the other modes must absorb the whole return. Compressive volumetric
+  // increments keep q0 = k - alpha p_trial above the skew part of an admissible old stress, so
+  // a return exists for every state drawn here.
+  const double c = 1e3;
+  const CosseratDruckerPrager<double> model(kE, kNu, 0.0, kL, kPhi, 0.0, c);
+  REQUIRE(model.coefficients().beta == 0.0);
+  const double a1 = 0.375, a2 = 0.125, a3 = 1.0;  // the defaults, a1 != a2
+  std::mt19937_64 rng(53);
+  std::uniform_real_distribution<double> strain(-2e-3, 2e-3), unit(-1.0, 1.0);
+  int plastic = 0;
+  for (int n = 0; n < 3000; ++n) {
+    CosseratTensor2D<double> old = random_stress(rng, 5e3) * 0.1;
+    if (model.yield_function(old) > 0) continue;
+    CosseratTensor2D<double> de;
+    for (int i = 0; i < 7; ++i) de[i] = strain(rng);
+    de.tail<2>() /= kL;  // curvature: strain / l gives couple stresses m / l of stress size
+    const double volumetric = de[0] + de[1] + de[2];
+    if (volumetric > 0) de.head<3>().array() -= volumetric;  // compressive: q0 does not drop
+    CosseratTensor2D<double> stress = old;
+    PlasticState state;
+    CosseratDruckerPrager<double>::tangent_type tangent;
+    model.update(stress, state, de, tangent);
+    REQUIRE(stress.allFinite());
+    REQUIRE(tangent.allFinite());
+    const double scale = stress.cwiseAbs().maxCoeff() + c;
+    CHECK(model.yield_function(stress) / scale <= 1e-10);
+    // The skew stress has no stiffness, elastic or plastic.
+    CHECK(stress[3] - stress[4] == doctest::Approx(old[3] - old[4]).epsilon(1e-12));
+    if (state.plastic == 0.0) continue;
+    ++plastic;
+    CHECK(std::abs(model.yield_function(stress)) / scale <= 1e-10);
+    // Associated deviatoric flow, beta = 0: d eps_p = dl dq/dsigma. The elastic tangent is
+    // singular in the skew direction, so compare the stress change D (de - d eps_p) instead.
+    const CosseratTensor2D<double> flow =
+        state.plastic_shear_strain * q_gradient(stress, a1, a2, a3);
+    CHECK(testing::relative_difference(stress - old, model.elastic_tangent() * (de - flow)) <=
+          1e-9);
+    if (n % 20 == 0) {
+      const auto numeric = testing::finite_difference_tangent(model, old, PlasticState{}, de);
+      CHECK(testing::relative_difference(tangent, numeric) <= 1e-6);
+    }
+  }
+  CHECK(plastic > 500);
+}
