@@ -5,9 +5,9 @@
 //   q^2 = a1 s_ij s_ij + a2 s_ij s_ji + a3 m_3i m_3i / l^2      (i, j over x, y, z)
 //   f = q + alpha p - k,   g = q + beta p,
 // with alpha, beta, k from phi, psi, c by a DruckerPragerMatching (default: the per-angle
-// plane-strain formula after Tejchman). With a1 + a2 = 1/2 (the defaults 0.375, 0.125, 1) q is
-// sqrt(J2) for a symmetric stress without couple stresses, so the model reduces to the classical
-// DruckerPrager with the same coefficients.
+// plane-strain formula; the paper cites Tejchman for the conversion without giving it). With a1 +
+// a2 = 1/2 (the defaults 0.375, 0.125, 1) q is sqrt(J2) for a symmetric stress without couple
+// stresses, so the model reduces to the classical DruckerPrager with the same coefficients.
 //
 // The return is backward Euler. In the modes that diagonalise both q and the elastic law (the
 // deviatoric normals with the symmetric shear, the skew shear, the couple stresses) each mode

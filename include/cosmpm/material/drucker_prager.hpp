@@ -24,7 +24,8 @@ enum class DruckerPragerMatching {
   plane_strain,
   // The associated plane-strain formula applied to each angle on its own:
   // alpha = sqrt3 sin(phi) / sqrt(3 + sin^2 phi) (= 3 tan phi / sqrt(9 + 12 tan^2 phi)), beta the
-  // same with psi. The conversion we attribute to Tejchman (1997); the Cosserat default.
+  // same with psi. The Cosserat default; our choice: the paper says only that the polar
+  // parameters follow Tejchman (1997) and gives no formula (docs/theory/materials.md).
   plane_strain_per_angle,
   // Cone through the triaxial-compression corners (circumscribes Mohr-Coulomb):
   // alpha = 2 sqrt3 sin(phi) / (3 - sin phi), beta likewise with psi.
