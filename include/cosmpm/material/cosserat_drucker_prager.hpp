@@ -128,7 +128,7 @@ class CosseratDruckerPrager {
 
   Modes split(const stress_type& s) const {
     Modes modes;
-    modes.p = (s[0] + s[1] + s[2]) / 3;
+    modes.p = (s[0] + s[1] + s[2]) * (T(1) / 3);  // a product: a division would sit in the chain
     const T d0 = s[0] - modes.p, d1 = s[1] - modes.p, d2 = s[2] - modes.p;
     const T sym = (s[3] + s[4]) / 2;
     const T skew = (s[3] - s[4]) / 2;
