@@ -33,7 +33,7 @@
 #include "cosmpm/material/concept.hpp"
 #include "cosmpm/particles/fields.hpp"
 #include "cosmpm/shape/concept.hpp"
-#include "cosmpm/shape/stencil.hpp"
+#include "cosmpm/shape/separable.hpp"
 
 namespace cosmpm {
 
@@ -79,7 +79,7 @@ class Simulation {
   using store_type = typename Continuum::template particle_store<Dim>;
   using stress_type = typename model_type::stress_type;
   using state_type = typename model_type::state_type;
-  using stencil_type = shape::Stencil<Dim, Kernel>;
+  using stencil_type = shape::SeparableStencil<Dim, Kernel>;
   using rates_type = typename Continuum::template rates_type<Dim>;
   static constexpr int dim = Dim;
   static constexpr bool is_cosserat = Continuum::is_cosserat;
@@ -266,88 +266,69 @@ class Simulation {
   // the nodes. Buckets particles into coloured blocks first.
   void map_to_grid(bool with_forces) {
     bucket_particles();
-    const auto& x = particles_.template get<particles::field::Position<Dim>>();
-    const auto& v = particles_.template get<particles::field::Velocity<Dim>>();
-    const auto& mass = particles_.template get<particles::field::Mass>();
-    const auto& vol = particles_.template get<particles::field::Volume>();
-    const auto& half = particles_.template get<particles::field::HalfWidth<Dim>>();
-    const auto& stress = particles_.template get<particles::field::Stress<model_type>>();
-    clear_nodes(with_forces);
-    const Vec<Dim> gravity = parameters_.gravity;
-    // Raw pointers: the compiler need not reload the vectors' data after each node store.
-    double* const node_mass = nodes_.mass.data();
-    Vec<Dim>* const node_momentum = nodes_.momentum.data();
-    Vec<Dim>* const node_force = nodes_.force.data();
-    for_each_particle_coloured([&](Index p) {
-      stencil_type s;
-      s.compute(grid_, x[p], half[p]);
-      const double mp = mass[p];
-      const Vec<Dim> momentum = mp * v[p];
-      if (with_forces) {
-        // A local copy: node stores could alias the particle arrays, forcing reloads.
-        const stress_type volume_stress = vol[p] * stress[p];
-        const Vec<Dim> weight_force = mp * gravity;
-        [[maybe_unused]] double inertia = 0.0, spin_momentum = 0.0;
-        if constexpr (is_cosserat) {
-          inertia = mp * particles_.template get<particles::field::MicroInertia>()[p];
-          spin_momentum = inertia * particles_.template get<particles::field::MicroSpin>()[p];
-        }
-        for (int k = 0; k < stencil_type::size; ++k) {
-          const Index n = s.node[k];
-          const double w = s.weight[k];
-          node_mass[n] += w * mp;
-          node_momentum[n] += w * momentum;
-          node_force[n] +=
-              w * weight_force - Continuum::stress_divergence_term(volume_stress, s.gradient[k]);
-          if constexpr (is_cosserat) {
-            // The rotational balance shares the stencil loop (one pass over the nodes).
-            nodes_.rotational_inertia[n] += w * inertia;
-            nodes_.spin_momentum[n] += w * spin_momentum;
-            nodes_.moment[n] += Continuum::moment_term(volume_stress, w, s.gradient[k]);
-          }
-        }
-      } else {
-        if constexpr (is_cosserat) map_rotation_to_grid(p, s);
-        for (int k = 0; k < stencil_type::size; ++k) {
-          const Index n = s.node[k];
-          const double w = s.weight[k];
-          node_mass[n] += w * mp;
-          node_momentum[n] += w * momentum;
-        }
+    const auto scatter = [&] {
+      return with_forces ? scatter_particles<true>() : scatter_particles<false>();
+    };
+    if (!scatter()) {
+      // Particles were moved outside the engine since the last step (e.g. by the user):
+      // the blocks no longer keep same-colour scatters apart. Sort again and redo.
+      assign_blocks();
+      sort_into_blocks();
+      require(scatter(), "Simulation::map_to_grid: particle blocks inconsistent after sorting");
+    }
+    const Index count = grid_.node_count();
+    const Index size = with_forces ? Scattered::all : Scattered::weighted;  // per node
+    const double* const scattered = scatter_.data();
+    for (Index n = 0; n < count; ++n) {
+      const double* const record = scattered + n * size;
+      nodes_.mass[n] = record[Scattered::mass];
+      for (int d = 0; d < Dim; ++d) {
+        nodes_.momentum[n][d] = record[Scattered::momentum + d];
+        if (with_forces) nodes_.force[n][d] = record[Scattered::force + d];
       }
-    });
+      if constexpr (is_cosserat) {
+        nodes_.rotational_inertia[n] = record[Scattered::inertia];
+        nodes_.spin_momentum[n] = record[Scattered::spin_momentum];
+        if (with_forces) nodes_.moment[n] = record[Scattered::moment];
+      }
+    }
   }
 
   // USF only: forces after the stress update (mass and momentum are already on the grid).
   void map_forces_to_grid() {
-    if constexpr (is_cosserat) {
-      for (Index n = 0; n < grid_.node_count(); ++n) {
-        nodes_.spin_momentum[n] *= nodes_.rotational_inertia[n];
-        nodes_.moment[n] = 0.0;
-      }
+    const Index count = grid_.node_count();
+    for (Index n = 0; n < count; ++n) {
+      // grid_velocity_from_momentum turned the momenta into velocities; restore them.
+      nodes_.momentum[n] *= nodes_.mass[n];
+      if constexpr (is_cosserat) nodes_.spin_momentum[n] *= nodes_.rotational_inertia[n];
     }
-    const auto& x = particles_.template get<particles::field::Position<Dim>>();
+    constexpr int forces = Dim + (is_cosserat ? 1 : 0);
+    std::fill(scatter_.begin(), scatter_.begin() + forces * count, 0.0);
+    require_start_stencils("map_forces_to_grid");
     const auto& mass = particles_.template get<particles::field::Mass>();
     const auto& vol = particles_.template get<particles::field::Volume>();
-    const auto& half = particles_.template get<particles::field::HalfWidth<Dim>>();
     const auto& stress = particles_.template get<particles::field::Stress<model_type>>();
     const Vec<Dim> gravity = parameters_.gravity;
-    // Grid momenta were turned into velocities by grid_velocity_from_momentum; restore them.
-    for (Index n = 0; n < grid_.node_count(); ++n) {
-      nodes_.momentum[n] *= nodes_.mass[n];
-      nodes_.force[n].setZero();
-    }
+    const shape::StencilGrid<Dim> stencil_grid(grid_);
     for_each_particle_coloured([&](Index p) {
       stencil_type s;
-      s.compute(grid_, x[p], half[p]);
-      if constexpr (is_cosserat) map_moment_to_grid(p, s);
-      const Vec<Dim> weight_force = mass[p] * gravity;
-      for (int k = 0; k < stencil_type::size; ++k) {
-        nodes_.force[s.node[k]] +=
-            s.weight[k] * weight_force -
-            vol[p] * Continuum::stress_divergence_term(stress[p], s.gradient[k]);
+      start_stencil(p, stencil_grid, s);
+      std::array<double, forces> weighted;
+      std::array<std::array<double, Dim>, forces> by_gradient;
+      const auto b = Continuum::internal_force_coefficients(stress[p], vol[p]);
+      for (int d = 0; d < Dim; ++d) {
+        weighted[d] = mass[p] * gravity[d];
+        for (int e = 0; e < Dim; ++e) by_gradient[d][e] = b[d][e];
       }
+      if constexpr (is_cosserat) {
+        Continuum::moment_coefficients(stress[p], vol[p], weighted[Dim], by_gradient[Dim]);
+      }
+      shape::scatter<0>(s, scatter_.data(), weighted, by_gradient);
     });
+    for (Index n = 0; n < count; ++n) {
+      for (int d = 0; d < Dim; ++d) nodes_.force[n][d] = scatter_[n * forces + d];
+      if constexpr (is_cosserat) nodes_.moment[n] = scatter_[n * forces + Dim];
+    }
   }
 
   // Stage 2: nodal velocity and acceleration from momentum and force (lumped mass), local
@@ -392,15 +373,25 @@ class Simulation {
     // Contact acts on the updated velocity only, so the acceleration (and through FLIP the
     // particles) carries its impulse; boundary conditions come last and win.
     correct_contact(nodes_.velocity, spin_field(nodes_.spin), dt, contact::Phase::end_velocity);
+    // The grid-to-particle pass reads velocity and acceleration from one component array each.
+    gather_.resize(static_cast<std::size_t>(Gathered::all * count));
+    double* const gathered = gather_.data();
     COSMPM_OMP_PARALLEL_FOR(threads_, count)
     for (Index n = 0; n < count; ++n) {
       apply_boundary_conditions(n, nodes_.momentum[n]);
       apply_boundary_conditions(n, nodes_.velocity[n]);
       nodes_.acceleration[n] = (nodes_.velocity[n] - nodes_.momentum[n]) / dt;
+      double* const record = gathered + n * Gathered::all;
+      for (int d = 0; d < Dim; ++d) {
+        record[Gathered::velocity + d] = nodes_.velocity[n][d];
+        record[Gathered::acceleration + d] = nodes_.acceleration[n][d];
+      }
       if constexpr (is_cosserat) {
         apply_rotation_conditions(n, nodes_.spin_momentum[n]);
         apply_rotation_conditions(n, nodes_.spin[n]);
         nodes_.spin_acceleration[n] = (nodes_.spin[n] - nodes_.spin_momentum[n]) / dt;
+        record[Gathered::spin] = nodes_.spin[n];
+        record[Gathered::spin_acceleration] = nodes_.spin_acceleration[n];
       }
     }
   }
@@ -417,77 +408,189 @@ class Simulation {
   }
 
  private:
-  template <bool with_stress_update>
-  void map_to_particles_impl(double dt) {
-    auto& L = particles_.template get<particles::field::VelocityGradient<Dim>>();
-    auto& x = particles_.template get<particles::field::Position<Dim>>();
-    auto& v = particles_.template get<particles::field::Velocity<Dim>>();
-    const auto& half = particles_.template get<particles::field::HalfWidth<Dim>>();
-    const double flip = parameters_.flip_fraction;
-    const Index count = particles_.size();
-    const Vec<Dim>* const node_velocity = nodes_.velocity.data();
-    const Vec<Dim>* const node_acceleration = nodes_.acceleration.data();
-    const GridBox box(grid_);
-    Index first_outside = count;
-    Index first_bad = count;
-    COSMPM_OMP_PARALLEL_FOR(threads_, count)
-    for (Index p = 0; p < count; ++p) {
-      stencil_type s;
-      s.compute(grid_, x[p], half[p]);
-      Vec<Dim> v_grid = Vec<Dim>::Zero();
-      Vec<Dim> a_grid = Vec<Dim>::Zero();
-      rates_type rates;
-      [[maybe_unused]] double spin_grid = 0.0, spin_acceleration = 0.0;
-      [[maybe_unused]] Vec<Dim> spin_gradient = Vec<Dim>::Zero();
-      for (int k = 0; k < stencil_type::size; ++k) {
-        const Vec<Dim>& v_node = node_velocity[s.node[k]];
-        v_grid += s.weight[k] * v_node;
-        a_grid += s.weight[k] * node_acceleration[s.node[k]];
-        if constexpr (with_stress_update) {
-          rates.velocity_gradient.noalias() += v_node * s.gradient[k].transpose();
-        }
-        if constexpr (is_cosserat) {  // the micro-spin shares the stencil loop
-          const double spin_node = nodes_.spin[s.node[k]];
-          spin_grid += s.weight[k] * spin_node;
-          spin_acceleration += s.weight[k] * nodes_.spin_acceleration[s.node[k]];
-          spin_gradient += spin_node * s.gradient[k];
-        }
-      }
-      if constexpr (is_cosserat) {
-        update_particle_rotation(p, dt, flip, spin_grid, spin_acceleration);
-        rates.spin = spin_grid;
-        rates.spin_gradient = spin_gradient;
-      }
-      if constexpr (with_stress_update) {
-        L[p] = rates.velocity_gradient;
-        if (!update_particle_stress(p, rates, dt)) record_first(first_bad, p);
-      }
-      v[p] = flip * (v[p] + dt * a_grid) + (1.0 - flip) * v_grid;
-      x[p] += dt * v_grid;
-      if (!box.contains(x[p])) [[unlikely]]
-        record_first(first_outside, p);
-    }
-    // A particle that left the grid usually also tore its neighbourhood: name the cause.
-    if (first_outside < count) throw_outside(first_outside);
-    if (first_bad < count) throw_unstable_stress(first_bad);
-  }
-
-  // Grid::contains with the grid's constants in registers (same arithmetic, same answer).
+  // Grid::contains with the grid's constants in registers (same arithmetic, same answer),
+  // also giving the cell that holds x (as shape::SeparableStencil finds it).
   struct GridBox {
     Vec<Dim> origin, inverse_cell_size, cells;
     explicit GridBox(const grid::Grid<Dim>& grid)
         : origin(grid.origin()), inverse_cell_size(grid.inverse_cell_size()) {
       for (int d = 0; d < Dim; ++d) cells[d] = static_cast<double>(grid.cells(d));
     }
-    bool contains(const Vec<Dim>& x) const {
+    bool locate(const Vec<Dim>& x, std::array<Index, Dim>& cell) const {
       bool inside = true;
       for (int d = 0; d < Dim; ++d) {
         const double xi = (x[d] - origin[d]) * inverse_cell_size[d];
         inside = inside && xi > 0.0 && xi < cells[d];
+        cell[d] = inside ? static_cast<Index>(xi) : 0;
       }
       return inside;
     }
   };
+
+  template <bool with_stress_update>
+  void map_to_particles_impl(double dt) {
+    require_start_stencils("map_to_particles");
+    const Index count = particles_.size();
+    const ParticleMapPass pass{dt, parameters_.flip_fraction, gather_.data(),
+                               shape::StencilGrid<Dim>(grid_), GridBox(grid_)};
+    Index first_outside = count;
+    Index first_bad = count;
+    Index first_moved = count;
+    // pack_width particles at a time, then the rest one by one.
+    constexpr int W = pack_width;
+    const Index packs = count / W;
+    COSMPM_OMP_PARALLEL_FOR(threads_, count)
+    for (Index b = 0; b < packs; ++b) {
+      map_from_grid<W, with_stress_update>(b * W, pass, first_outside, first_bad, first_moved);
+    }
+    for (Index p = packs * W; p < count; ++p) {
+      map_from_grid<1, with_stress_update>(p, pass, first_outside, first_bad, first_moved);
+    }
+    if (first_moved < count) blocks_changed_ = true;
+    // A particle that left the grid usually also tore its neighbourhood: name the cause.
+    if (first_outside < count) throw_outside(first_outside);
+    if (first_bad < count) throw_unstable_stress(first_bad);
+  }
+
+  // What every particle of a grid-to-particle map shares.
+  struct ParticleMapPass {
+    double dt;
+    double flip;
+    const double* records;  // gather_
+    shape::StencilGrid<Dim> stencil_grid;
+    GridBox box;
+  };
+
+  // Grid to particles p, ..., p + W - 1: stencils, node sums, velocity, position and
+  // deformation run side by side in packs; the constitutive update is per particle.
+  template <int W, bool with_stress_update>
+  COSMPM_ALWAYS_INLINE void map_from_grid(Index p, const ParticleMapPass& pass,
+                                          Index& first_outside, Index& first_bad,
+                                          Index& first_moved) {
+    using P = Pack<W>;
+    auto& x = particles_.template get<particles::field::Position<Dim>>();
+    auto& v = particles_.template get<particles::field::Velocity<Dim>>();
+    const auto& half = particles_.template get<particles::field::HalfWidth<Dim>>();
+    const auto& start = stencil_cells_;
+    const double dt = pass.dt;
+    const double flip = pass.flip;
+    // Velocity (and Cosserat spin) with gradients when the stress is updated here, then the
+    // accelerations.
+    constexpr int with_gradient = with_stress_update ? Gathered::with_gradient : 0;
+    shape::PackedStencil<Dim, Kernel, W> s;
+    s.compute_from_cell_units(
+        pass.stencil_grid, [&](int l) -> const Vec<Dim>& { return start[p + l]; },
+        [&](int l) -> const Vec<Dim>& { return half[p + l]; });
+    const auto grid_values = shape::gather<Gathered::all, with_gradient>(s, pass.records);
+    for (int d = 0; d < Dim; ++d) {
+      const P v_grid = grid_values.value[Gathered::velocity + d];
+      const P a_grid = grid_values.value[Gathered::acceleration + d];
+      const P v_old = make_pack<W>([&](int l) { return v[p + l][d]; });
+      const P x_old = make_pack<W>([&](int l) { return x[p + l][d]; });
+      const P v_new = flip * (v_old + dt * a_grid) + (1.0 - flip) * v_grid;
+      const P x_new = x_old + dt * v_grid;
+      for (int l = 0; l < W; ++l) {
+        v[p + l][d] = lane<W>(v_new, l);
+        x[p + l][d] = lane<W>(x_new, l);
+      }
+    }
+    [[maybe_unused]] P volume_ratio;
+    if constexpr (with_stress_update) {
+      std::array<std::array<P, Dim>, Dim> L;
+      for (int i = 0; i < Dim; ++i) L[i] = grid_values.gradient[Gathered::velocity + i];
+      volume_ratio = update_deformation<W>(p, L, dt);
+    }
+    for (int l = 0; l < W; ++l) {
+      const Index q = p + l;
+      if constexpr (is_cosserat) {
+        update_particle_rotation(q, dt, flip, lane<W>(grid_values.value[Gathered::spin], l),
+                                 lane<W>(grid_values.value[Gathered::spin_acceleration], l));
+      }
+      if constexpr (with_stress_update) {
+        const rates_type rates = rates_from<W>(grid_values, l);
+        particles_.template get<particles::field::VelocityGradient<Dim>>()[q] =
+            rates.velocity_gradient;
+        const bool finite = update_constitutive(q, rates, dt);
+        if (!(finite && lane<W>(volume_ratio, l) > 0.0)) [[unlikely]]
+          record_first(first_bad, q);
+      }
+      std::array<Index, Dim> cell;
+      if (!pass.box.locate(x[q], cell)) [[unlikely]] {
+        record_first(first_outside, q);
+      } else if (const Index block = block_of_cell(cell); block != particle_block_[q]) {
+        particle_block_[q] = block;  // sorted again at the next particle-to-grid map
+        record_first(first_moved, q);
+      }
+    }
+  }
+
+  // F <- (I + dt L) F and V = det(F) V0 for particles p, ..., p + W - 1; returns det(F).
+  template <int W>
+  COSMPM_ALWAYS_INLINE Pack<W> update_deformation(
+      Index p, const std::array<std::array<Pack<W>, Dim>, Dim>& L, double dt) {
+    using P = Pack<W>;
+    auto& F = particles_.template get<particles::field::DeformationGradient<Dim>>();
+    std::array<std::array<P, Dim>, Dim> old, updated;
+    for (int i = 0; i < Dim; ++i) {
+      for (int j = 0; j < Dim; ++j) old[i][j] = make_pack<W>([&](int l) { return F[p + l](i, j); });
+    }
+    for (int i = 0; i < Dim; ++i) {
+      for (int j = 0; j < Dim; ++j) {
+        P lf = L[i][0] * old[0][j];
+        for (int k = 1; k < Dim; ++k) lf += L[i][k] * old[k][j];
+        updated[i][j] = old[i][j] + dt * lf;
+        for (int l = 0; l < W; ++l) F[p + l](i, j) = lane<W>(updated[i][j], l);
+      }
+    }
+    const P J = determinant(updated);
+    const auto& initial_volume = particles_.template get<particles::field::InitialVolume>();
+    auto& volume = particles_.template get<particles::field::Volume>();
+    const P V = J * make_pack<W>([&](int l) { return initial_volume[p + l]; });
+    for (int l = 0; l < W; ++l) volume[p + l] = lane<W>(V, l);
+    return J;
+  }
+
+  template <class T>
+  static T determinant(const std::array<std::array<T, Dim>, Dim>& a) {
+    static_assert(Dim == 2 || Dim == 3, "Simulation: determinant for 2D and 3D only");
+    if constexpr (Dim == 2) {
+      return a[0][0] * a[1][1] - a[0][1] * a[1][0];
+    } else {
+      return a[0][0] * (a[1][1] * a[2][2] - a[1][2] * a[2][1]) -
+             a[0][1] * (a[1][0] * a[2][2] - a[1][2] * a[2][0]) +
+             a[0][2] * (a[1][0] * a[2][1] - a[1][1] * a[2][0]);
+    }
+  }
+
+  // The constitutive update of one particle; false if the stress came out non-finite.
+  COSMPM_ALWAYS_INLINE bool update_constitutive(Index q, const rates_type& rates, double dt) {
+    auto& stress = particles_.template get<particles::field::Stress<model_type>>()[q];
+    const stress_type updated = Continuum::updated_stress(
+        model_, rates, dt, stress,
+        particles_.template get<particles::field::MaterialState<model_type>>()[q],
+        particles_.template get<particles::field::Strain<model_type>>()[q]);
+    stress = updated;
+    // x * 0 is 0 for finite x and NaN otherwise: one sum instead of a test per component.
+    return (updated.array() * 0.0).sum() == 0.0;
+  }
+
+  // Particle l's rates from a gather whose first fields carry gradients.
+  template <int W, class GridValues>
+  static rates_type rates_from(const GridValues& grid_values, int l) {
+    rates_type rates;
+    for (int i = 0; i < Dim; ++i) {
+      for (int j = 0; j < Dim; ++j) {
+        rates.velocity_gradient(i, j) = lane<W>(grid_values.gradient[Gathered::velocity + i][j], l);
+      }
+    }
+    if constexpr (is_cosserat) {
+      rates.spin = lane<W>(grid_values.value[Gathered::spin], l);
+      for (int d = 0; d < Dim; ++d) {
+        rates.spin_gradient[d] = lane<W>(grid_values.gradient[Gathered::spin][d], l);
+      }
+    }
+    return rates;
+  }
 
   // Keeps the lowest index, so messages do not depend on the thread count.
   static void record_first(Index& first, Index p) {
@@ -500,19 +603,12 @@ class Simulation {
   // Constitutive update, deformation gradient and volume of one particle; false when the
   // result is not physical (inverted volume or non-finite stress).
   bool update_particle_stress(Index p, const rates_type& rates, double dt) {
-    const Mat<Dim> L = rates.velocity_gradient;
-    auto& F = particles_.template get<particles::field::DeformationGradient<Dim>>()[p];
-    auto& stress = particles_.template get<particles::field::Stress<model_type>>()[p];
-    Continuum::update_stress(
-        model_, rates, dt, stress,
-        particles_.template get<particles::field::MaterialState<model_type>>()[p],
-        particles_.template get<particles::field::Strain<model_type>>()[p]);
-    F = (Mat<Dim>::Identity() + dt * L) * F;
-    const double J = F.determinant();
-    particles_.template get<particles::field::Volume>()[p] =
-        J * particles_.template get<particles::field::InitialVolume>()[p];
-    // x * 0 is 0 for finite x and NaN otherwise: one sum instead of a test per component.
-    return J > 0.0 && (stress.array() * 0.0).sum() == 0.0;
+    std::array<std::array<double, Dim>, Dim> L;
+    for (int i = 0; i < Dim; ++i) {
+      for (int j = 0; j < Dim; ++j) L[i][j] = rates.velocity_gradient(i, j);
+    }
+    const bool finite = update_constitutive(p, rates, dt);
+    return update_deformation<1>(p, L, dt) > 0.0 && finite;
   }
 
   void throw_unstable_stress(Index p) const {
@@ -550,39 +646,39 @@ class Simulation {
   void remap_momentum() {
     const auto& v = particles_.template get<particles::field::Velocity<Dim>>();
     const auto& mass = particles_.template get<particles::field::Mass>();
-    const auto& half = particles_.template get<particles::field::HalfWidth<Dim>>();
-    std::fill(nodes_.velocity.begin(), nodes_.velocity.end(), Vec<Dim>::Zero());
-    if constexpr (is_cosserat) std::fill(nodes_.spin.begin(), nodes_.spin.end(), 0.0);
-    const auto& start = start_positions();
+    const Index count = grid_.node_count();
+    require_start_stencils("remap_momentum");
+    constexpr int momenta = Dim + (is_cosserat ? 1 : 0);
+    std::fill(scatter_.begin(), scatter_.begin() + momenta * count, 0.0);
+    const shape::StencilGrid<Dim> stencil_grid(grid_);
     for_each_particle_coloured([&](Index p) {
       stencil_type s;
-      s.compute(grid_, start[p], half[p]);
-      const Vec<Dim> momentum = mass[p] * v[p];
-      for (int k = 0; k < stencil_type::size; ++k) {
-        nodes_.velocity[s.node[k]] += s.weight[k] * momentum;
-      }
+      start_stencil(p, stencil_grid, s);
+      std::array<double, momenta> weighted;
+      for (int d = 0; d < Dim; ++d) weighted[d] = mass[p] * v[p][d];
       if constexpr (is_cosserat) {
-        const double spin_momentum = mass[p] *
-                                     particles_.template get<particles::field::MicroInertia>()[p] *
-                                     particles_.template get<particles::field::MicroSpin>()[p];
-        for (int k = 0; k < stencil_type::size; ++k) {
-          nodes_.spin[s.node[k]] += s.weight[k] * spin_momentum;
-        }
+        weighted[Dim] = mass[p] * particles_.template get<particles::field::MicroInertia>()[p] *
+                        particles_.template get<particles::field::MicroSpin>()[p];
       }
+      shape::scatter<momenta>(s, scatter_.data(), weighted, {});
     });
     const double empty = empty_node_mass();
-    for (Index n = 0; n < grid_.node_count(); ++n) {
+    for (Index n = 0; n < count; ++n) {
       if (nodes_.mass[n] <= empty) {
         nodes_.velocity[n].setZero();
         if constexpr (is_cosserat) nodes_.spin[n] = 0.0;
         continue;
       }
-      nodes_.velocity[n] /= nodes_.mass[n];
-      if constexpr (is_cosserat) nodes_.spin[n] /= nodes_.rotational_inertia[n];
+      for (int d = 0; d < Dim; ++d) {
+        nodes_.velocity[n][d] = scatter_[n * momenta + d] / nodes_.mass[n];
+      }
+      if constexpr (is_cosserat) {
+        nodes_.spin[n] = scatter_[n * momenta + Dim] / nodes_.rotational_inertia[n];
+      }
     }
     correct_contact(nodes_.velocity, spin_field(nodes_.spin), current_dt_,
                     contact::Phase::remapped_velocity);
-    for (Index n = 0; n < grid_.node_count(); ++n) {
+    for (Index n = 0; n < count; ++n) {
       apply_boundary_conditions(n, nodes_.velocity[n]);
       if constexpr (is_cosserat) apply_rotation_conditions(n, nodes_.spin[n]);
     }
@@ -593,23 +689,29 @@ class Simulation {
   // classical continuum.
   void velocity_gradient_from_grid(const std::vector<Vec<Dim>>& node_velocity,
                                    const std::vector<double>& node_spin = {}) {
-    const auto& start = start_positions();
+    const Index nodes = grid_.node_count();
+    require(static_cast<Index>(node_velocity.size()) == nodes &&
+                (!is_cosserat || static_cast<Index>(node_spin.size()) == nodes),
+            "Simulation::velocity_gradient_from_grid: a nodal field does not match the grid's " +
+                std::to_string(nodes) + " nodes");
+    gather_.resize(static_cast<std::size_t>(Gathered::all * nodes));
+    constexpr int size = Gathered::with_gradient;  // per node: velocity (, spin)
+    for (Index n = 0; n < nodes; ++n) {
+      for (int d = 0; d < Dim; ++d)
+        gather_[n * size + Gathered::velocity + d] = node_velocity[n][d];
+      if constexpr (is_cosserat) gather_[n * size + Gathered::spin] = node_spin[n];
+    }
+    const double* const records = gather_.data();
+    const shape::StencilGrid<Dim> stencil_grid(grid_);
+    require_start_stencils("velocity_gradient_from_grid");
     auto& L = particles_.template get<particles::field::VelocityGradient<Dim>>();
-    const auto& half = particles_.template get<particles::field::HalfWidth<Dim>>();
     const Index count = particles_.size();
     particle_rates_.resize(count);
     COSMPM_OMP_PARALLEL_FOR(threads_, count)
     for (Index p = 0; p < count; ++p) {
       stencil_type s;
-      s.compute(grid_, start[p], half[p]);
-      rates_type rates;
-      for (int k = 0; k < stencil_type::size; ++k) {
-        rates.velocity_gradient.noalias() += node_velocity[s.node[k]] * s.gradient[k].transpose();
-        if constexpr (is_cosserat) {
-          rates.spin += s.weight[k] * node_spin[s.node[k]];
-          rates.spin_gradient += node_spin[s.node[k]] * s.gradient[k];
-        }
-      }
+      start_stencil(p, stencil_grid, s);
+      const rates_type rates = rates_from<1>(shape::gather<size, size>(s, records), 0);
       L[p] = rates.velocity_gradient;
       particle_rates_[p] = rates;
     }
@@ -681,24 +783,17 @@ class Simulation {
   }
 
  private:
-  // Where the stencils of this step were evaluated: USL needs no copy, it maps before moving.
-  const std::vector<Vec<Dim>>& start_positions() const {
-    if constexpr (Scheme::scheme == integrator::Scheme::usl) {
-      return particles_.template get<particles::field::Position<Dim>>();
-    } else {
-      return stencil_positions_;
-    }
+  // The stencil of particle p at the start of the step (the last map_to_grid).
+  COSMPM_ALWAYS_INLINE void start_stencil(Index p, const shape::StencilGrid<Dim>& stencil_grid,
+                                          stencil_type& s) const {
+    s.compute_from_cell_units(stencil_grid, stencil_cells_[p],
+                              particles_.template get<particles::field::HalfWidth<Dim>>()[p]);
   }
 
-  void clear_nodes(bool with_forces) {
-    std::fill(nodes_.mass.begin(), nodes_.mass.end(), 0.0);
-    std::fill(nodes_.momentum.begin(), nodes_.momentum.end(), Vec<Dim>::Zero());
-    if (with_forces) std::fill(nodes_.force.begin(), nodes_.force.end(), Vec<Dim>::Zero());
-    if constexpr (is_cosserat) {
-      std::fill(nodes_.rotational_inertia.begin(), nodes_.rotational_inertia.end(), 0.0);
-      std::fill(nodes_.spin_momentum.begin(), nodes_.spin_momentum.end(), 0.0);
-      if (with_forces) std::fill(nodes_.moment.begin(), nodes_.moment.end(), 0.0);
-    }
+  void require_start_stencils(const char* where) const {
+    require(static_cast<Index>(stencil_cells_.size()) == particles_.size(),
+            std::string("Simulation::") + where +
+                ": no stencils for this step's particles; call map_to_grid first");
   }
 
   double empty_node_mass() const {
@@ -756,27 +851,6 @@ class Simulation {
     }
   }
 
-  // Cosserat particle-to-grid without forces (USF's first map): inertia and spin momentum.
-  void map_rotation_to_grid(Index p, const stencil_type& s) {
-    const double mp = particles_.template get<particles::field::Mass>()[p];
-    const double inertia = mp * particles_.template get<particles::field::MicroInertia>()[p];
-    const double spin_momentum =
-        inertia * particles_.template get<particles::field::MicroSpin>()[p];
-    for (int k = 0; k < stencil_type::size; ++k) {
-      nodes_.rotational_inertia[s.node[k]] += s.weight[k] * inertia;
-      nodes_.spin_momentum[s.node[k]] += s.weight[k] * spin_momentum;
-    }
-  }
-
-  void map_moment_to_grid(Index p, const stencil_type& s) {
-    const stress_type volume_stress =
-        particles_.template get<particles::field::Volume>()[p] *
-        particles_.template get<particles::field::Stress<model_type>>()[p];
-    for (int k = 0; k < stencil_type::size; ++k) {
-      nodes_.moment[s.node[k]] += Continuum::moment_term(volume_stress, s.weight[k], s.gradient[k]);
-    }
-  }
-
   // Cosserat grid-to-particle: spin (PIC/FLIP blend, as the velocity) and micro-rotation.
   void update_particle_rotation(Index p, double dt, double flip, double spin_grid,
                                 double spin_acceleration) {
@@ -797,35 +871,143 @@ class Simulation {
     }
   }
 
-  // Counting sort of particles into blocks of cells; remembers the stencil positions of the
-  // start of the step (MUSL and USF evaluate gradients there).
+  // Components of the nodal arrays the transfers work on (component c of node n at
+  // c * node_count + n, so the nodes of a stencil row are adjacent). A particle scatters
+  // weighted-only components first, then those that also take a gradient term.
+  struct Scattered {
+    static constexpr int cosserat = is_cosserat ? 1 : 0;
+    static constexpr int mass = 0;
+    static constexpr int momentum = 1;  // Dim components
+    static constexpr int inertia = 1 + Dim;
+    static constexpr int spin_momentum = 2 + Dim;
+    static constexpr int weighted = 1 + Dim + 2 * cosserat;
+    static constexpr int force = weighted;  // Dim components
+    static constexpr int moment = weighted + Dim;
+    static constexpr int all = weighted + Dim + cosserat;
+  };
+  // Grid-to-particle: the fields with gradients (velocity, spin) first, then accelerations.
+  struct Gathered {
+    static constexpr int cosserat = is_cosserat ? 1 : 0;
+    static constexpr int velocity = 0;  // Dim components
+    static constexpr int spin = Dim;
+    static constexpr int with_gradient = Dim + cosserat;
+    static constexpr int acceleration = with_gradient;  // Dim components
+    static constexpr int spin_acceleration = with_gradient + Dim;
+    static constexpr int all = 2 * with_gradient;
+  };
+
+  // The particle-to-grid pass of map_to_grid into scatter_. False (and nothing usable) if a
+  // particle no longer lies in the block it was sorted into.
+  template <bool with_forces>
+  bool scatter_particles() {
+    constexpr int W = Scattered::weighted;
+    constexpr int C = with_forces ? Scattered::all : W;
+    const Index nodes = grid_.node_count();
+    scatter_.resize(static_cast<std::size_t>(Scattered::all * nodes));
+    std::fill(scatter_.begin(), scatter_.begin() + C * nodes, 0.0);
+    const auto& x = particles_.template get<particles::field::Position<Dim>>();
+    const auto& v = particles_.template get<particles::field::Velocity<Dim>>();
+    const auto& mass = particles_.template get<particles::field::Mass>();
+    const auto& vol = particles_.template get<particles::field::Volume>();
+    const auto& half = particles_.template get<particles::field::HalfWidth<Dim>>();
+    const auto& stress = particles_.template get<particles::field::Stress<model_type>>();
+    const Index* const particle_block = particle_block_.data();
+    const Vec<Dim> gravity = parameters_.gravity;
+    const Index count = particles_.size();
+    Index first_misplaced = count;
+    const shape::StencilGrid<Dim> stencil_grid(grid_);
+    stencil_cells_.resize(count);
+    Vec<Dim>* const stencil_cells = stencil_cells_.data();
+    // Named outside the lambda: GCC 12 fails on C - W inside it.
+    using Weighted = std::array<double, C>;
+    using ByGradient = std::array<std::array<double, Dim>, C - W>;
+    for_each_particle_coloured([&](Index p) {
+      stencil_type s;
+      s.compute(stencil_grid, x[p], half[p]);
+      if (block_of_cell(s.cell) != particle_block[p]) [[unlikely]] {
+        record_first(first_misplaced, p);
+        return;
+      }
+      stencil_cells[p] = s.position_in_cells;
+      const double mp = mass[p];
+      Weighted weighted;
+      ByGradient by_gradient;
+      weighted[Scattered::mass] = mp;
+      for (int d = 0; d < Dim; ++d) weighted[Scattered::momentum + d] = mp * v[p][d];
+      if constexpr (is_cosserat) {
+        const double inertia = mp * particles_.template get<particles::field::MicroInertia>()[p];
+        weighted[Scattered::inertia] = inertia;
+        weighted[Scattered::spin_momentum] =
+            inertia * particles_.template get<particles::field::MicroSpin>()[p];
+      }
+      if constexpr (with_forces) {
+        const auto b = Continuum::internal_force_coefficients(stress[p], vol[p]);
+        for (int d = 0; d < Dim; ++d) {
+          weighted[Scattered::force + d] = mp * gravity[d];
+          for (int e = 0; e < Dim; ++e) by_gradient[d][e] = b[d][e];
+        }
+        if constexpr (is_cosserat) {
+          Continuum::moment_coefficients(stress[p], vol[p], weighted[Scattered::moment],
+                                         by_gradient[Dim]);
+        }
+      }
+      shape::scatter<W>(s, scatter_.data(), weighted, by_gradient);
+    });
+    return first_misplaced == count;
+  }
+
+  // The block of cells a particle belongs to, from the cell that holds it.
+  Index block_of_cell(const std::array<Index, Dim>& cell) const {
+    Index block = 0;
+    for (int d = Dim - 1; d >= 0; --d) {
+      // cell >= 0: unsigned division is a shift
+      const auto b = static_cast<std::size_t>(cell[d]) /
+                     static_cast<std::size_t>(detail::ParticleBlocks::block_cells(d));
+      block = block * blocks_per_axis_[d] + static_cast<Index>(b);
+    }
+    return block;
+  }
+
+  // Sorts particles into blocks when any changed block. The engine notes the particles it
+  // moves (map_to_particles); the scatter finds any other move and sorts again.
   void bucket_particles() {
+    if (static_cast<Index>(particle_block_.size()) != particles_.size()) {
+      assign_blocks();
+    } else if (!blocks_changed_) {
+      return;
+    }
+    sort_into_blocks();
+  }
+
+  // Every particle's block from its position (a particle outside the grid is reported by
+  // the stencil that follows; here it goes to the nearest block).
+  void assign_blocks() {
     const auto& x = particles_.template get<particles::field::Position<Dim>>();
     const Index count = particles_.size();
-    if constexpr (Scheme::scheme != integrator::Scheme::usl) stencil_positions_ = x;
-    // The order is a function of the particles' blocks alone: when no particle changed block
-    // (most steps), last step's order is the one a fresh sort would give.
-    bool changed = static_cast<Index>(particle_block_.size()) != count;
     particle_block_.resize(count);
-    order_.resize(count);
-    Index* const particle_block = particle_block_.data();
     for (Index p = 0; p < count; ++p) {
-      const Vec<Dim> xi = grid_.to_cell_units(x[p]);
-      Index block = 0;
-      for (int d = Dim - 1; d >= 0; --d) {
-        Index b = static_cast<Index>(xi[d]) / detail::ParticleBlocks::block_cells(d);
-        b = std::clamp<Index>(b, 0, blocks_per_axis_[d] - 1);
-        block = block * blocks_per_axis_[d] + b;
+      std::array<Index, Dim> cell;
+      for (int d = 0; d < Dim; ++d) {
+        const double xi = (x[p][d] - grid_.origin()[d]) * grid_.inverse_cell_size()[d];
+        const double last = static_cast<double>(grid_.nodes(d) - 1);
+        const Index containing = static_cast<Index>(std::clamp(xi, 0.0, last));
+        cell[d] = std::min(containing, grid_.cells(d) - 1);
       }
-      changed = changed || particle_block[p] != block;
-      particle_block[p] = block;
+      particle_block_[p] = block_of_cell(cell);
     }
-    if (!changed) return;
+  }
+
+  // Counting sort by block; within a block particles keep index order, so the order (and with
+  // it every nodal sum) is a function of the blocks alone.
+  void sort_into_blocks() {
+    const Index count = particles_.size();
+    order_.resize(count);
     std::fill(block_start_.begin(), block_start_.end(), 0);
-    for (Index p = 0; p < count; ++p) ++block_start_[particle_block[p] + 1];
+    for (Index p = 0; p < count; ++p) ++block_start_[particle_block_[p] + 1];
     for (std::size_t b = 1; b < block_start_.size(); ++b) block_start_[b] += block_start_[b - 1];
     block_fill_.assign(block_start_.begin(), block_start_.end() - 1);
     for (Index p = 0; p < count; ++p) order_[block_fill_[particle_block_[p]]++] = p;
+    blocks_changed_ = false;
   }
 
   // Runs f(p) over all particles; blocks of one colour run in parallel, colours in order,
@@ -874,7 +1056,11 @@ class Simulation {
   std::vector<Index> block_fill_;
   std::vector<Index> particle_block_;
   std::vector<Index> order_;
-  std::vector<Vec<Dim>> stencil_positions_;
+  bool blocks_changed_ = false;
+  std::vector<double> scatter_;  // component arrays of the particle-to-grid maps
+  std::vector<double> gather_;   // component arrays of the grid-to-particle maps
+  // Particle positions in cell units at the last map_to_grid: the stencils of the step.
+  std::vector<Vec<Dim>> stencil_cells_;
   std::vector<rates_type> particle_rates_;  // MUSL/USF: between rates and stress update
 };
 

@@ -1,6 +1,7 @@
 #pragma once
 // The classical (nonpolar) continuum: which fields a particle carries and how its stress is
 // updated from the velocity gradient of a step.
+#include <array>
 #include <tuple>
 
 #include "cosmpm/continuum/particle_fields.hpp"
@@ -25,31 +26,34 @@ requires(!Model::is_cosserat) struct Classical {
 
   // Objective (Jaumann) stress update for a 2D plane-strain step with velocity gradient L:
   // rotate the old stress by the spin, then let the model integrate the strain increment.
-  static void update_stress(const Model& model, const rates_type<2>& rates, double dt,
-                            typename Model::stress_type& stress, typename Model::state_type& state,
-                            typename Model::strain_type& accumulated_strain) {
+  // Returns the new stress rather than storing it: the caller checks it while it is still in
+  // registers (reading it back right after the store stalls on store-to-load forwarding).
+  static typename Model::stress_type updated_stress(
+      const Model& model, const rates_type<2>& rates, double dt,
+      const typename Model::stress_type& old_stress, typename Model::state_type& state,
+      typename Model::strain_type& accumulated_strain) {
     const Mat<2>& velocity_gradient = rates.velocity_gradient;
     const double spin = 0.5 * (velocity_gradient(0, 1) - velocity_gradient(1, 0)) * dt;
-    const double sxx = stress[0];
-    const double syy = stress[1];
-    const double sxy = stress[3];
-    stress[0] = sxx + 2.0 * spin * sxy;
-    stress[1] = syy - 2.0 * spin * sxy;
-    stress[3] = sxy + spin * (syy - sxx);
-    typename Model::strain_type increment;
-    increment[0] = velocity_gradient(0, 0) * dt;
-    increment[1] = velocity_gradient(1, 1) * dt;
-    increment[2] = 0.0;
-    increment[3] = 0.5 * (velocity_gradient(0, 1) + velocity_gradient(1, 0)) * dt;
+    const double sxx = old_stress[0];
+    const double syy = old_stress[1];
+    const double sxy = old_stress[3];
+    // Built whole (not component by component) so they can live in registers.
+    typename Model::stress_type stress(sxx + 2.0 * spin * sxy, syy - 2.0 * spin * sxy,
+                                       old_stress[2], sxy + spin * (syy - sxx));
+    const typename Model::strain_type increment(
+        velocity_gradient(0, 0) * dt, velocity_gradient(1, 1) * dt, 0.0,
+        0.5 * (velocity_gradient(0, 1) + velocity_gradient(1, 0)) * dt);
     model.update(stress, state, increment);
     accumulated_strain += increment;
+    return stress;
   }
 
-  // Internal force density of a particle: -sigma . grad N (in-plane part of the stress).
-  static Vec<2> stress_divergence_term(const typename Model::stress_type& stress,
-                                       const Vec<2>& gradient) {
-    return Vec<2>(stress[0] * gradient[0] + stress[3] * gradient[1],
-                  stress[3] * gradient[0] + stress[1] * gradient[1]);
+  // A particle's nodal internal force -V sigma . grad N, written as sum_i dN/dx_i b[j][i] for
+  // force component j (the transfers contract it one axis at a time).
+  static std::array<std::array<double, 2>, 2> internal_force_coefficients(
+      const typename Model::stress_type& stress, double volume) {
+    const double sxy = -volume * stress[3];
+    return {{{-volume * stress[0], sxy}, {sxy, -volume * stress[1]}}};
   }
 };
 

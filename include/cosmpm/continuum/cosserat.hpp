@@ -8,6 +8,8 @@
 //   rho J d^2 omega_3 / dt^2 = d m_3i / dx_i + s_xy - s_yx.
 // Their weak forms give, per particle of volume V and node shape function N:
 //   f_j = -V s_ij dN/dx_i,   moment = -V m_3i dN/dx_i + V (s_xy - s_yx) N.
+#include <array>
+
 #include "cosmpm/continuum/particle_fields.hpp"
 #include "cosmpm/continuum/rates.hpp"
 #include "cosmpm/core/types.hpp"
@@ -33,11 +35,13 @@ requires(Model::is_cosserat) struct Cosserat {
   // The in-plane stress is rotated with the continuum spin (Jaumann, valid for a
   // non-symmetric tensor: S += dt (W S - S W)) and the couple-stress vector with it
   // (m += dt W m); then the model integrates the Cosserat deformation increment.
-  static void update_stress(const Model& model, const rates_type<2>& rates, double dt,
-                            typename Model::stress_type& stress, typename Model::state_type& state,
-                            typename Model::strain_type& accumulated_strain) {
+  // Returns the new stress (see Classical::updated_stress).
+  static typename Model::stress_type updated_stress(
+      const Model& model, const rates_type<2>& rates, double dt,
+      const typename Model::stress_type& old_stress, typename Model::state_type& state,
+      typename Model::strain_type& accumulated_strain) {
     const Mat<2>& L = rates.velocity_gradient;
-    // W = [[0, w], [-w, 0]], w = (L_xy - L_yx) / 2, times dt.
+    typename Model::stress_type stress = old_stress;
     const double w = 0.5 * (L(0, 1) - L(1, 0)) * dt;
     const double sxx = stress[0], syy = stress[1], sxy = stress[3], syx = stress[4];
     // Tensor S with S(0,1) = s_xy, S(1,0) = s_yx: (W S - S W) entries.
@@ -59,20 +63,22 @@ requires(Model::is_cosserat) struct Cosserat {
     increment[6] = rates.spin_gradient[1] * dt;
     model.update(stress, state, increment);
     accumulated_strain += increment;
+    return stress;
   }
 
-  // Translational internal force density: s_ij dN/dx_i (the caller multiplies by -V).
-  static Vec<2> stress_divergence_term(const typename Model::stress_type& stress,
-                                       const Vec<2>& gradient) {
-    return Vec<2>(stress[0] * gradient[0] + stress[4] * gradient[1],
-                  stress[3] * gradient[0] + stress[1] * gradient[1]);
+  // A particle's nodal force -V s_ij dN/dx_i as sum_i dN/dx_i b[j][i] for component j.
+  static std::array<std::array<double, 2>, 2> internal_force_coefficients(
+      const typename Model::stress_type& stress, double volume) {
+    return {
+        {{-volume * stress[0], -volume * stress[4]}, {-volume * stress[3], -volume * stress[1]}}};
   }
 
-  // Nodal moment of a particle (already multiplied by V): -m_3i dN/dx_i + (s_xy - s_yx) N.
-  static double moment_term(const typename Model::stress_type& volume_stress, double weight,
-                            const Vec<2>& gradient) {
-    return -(volume_stress[5] * gradient[0] + volume_stress[6] * gradient[1]) +
-           (volume_stress[3] - volume_stress[4]) * weight;
+  // A particle's nodal moment -V m_3i dN/dx_i + V (s_xy - s_yx) N as N weighted +
+  // sum_i dN/dx_i by_gradient[i].
+  static void moment_coefficients(const typename Model::stress_type& stress, double volume,
+                                  double& weighted, std::array<double, 2>& by_gradient) {
+    weighted = volume * (stress[3] - stress[4]);
+    by_gradient = {-volume * stress[5], -volume * stress[6]};
   }
 };
 
