@@ -82,6 +82,13 @@ class CosseratDruckerPrager {
     }
     c_max_ = std::max({mode_stiffness_[0], mode_stiffness_[1], mode_stiffness_[2]});
     inverse_rate_max_ = 1 / (slope_ + c_max_);
+    lame_ = elastic_.iso.lambda;
+    shear2_ = 2 * g;
+    shear_plus_ = g + elastic_.cosserat_shear;
+    shear_minus_ = g - elastic_.cosserat_shear;
+    bending_ = elastic_.bending_modulus();
+    half_symmetric_weight_ = symmetric_weight_ / 2;
+    quarter_skew_weight_ = skew_weight_ / 4;
     const T rate_min = std::min({rate_[0], rate_[1], rate_[2]});
     inverse_rate_min_ = rate_min > T(0) ? 1 / rate_min : std::numeric_limits<T>::infinity();
   }
@@ -256,16 +263,44 @@ class CosseratDruckerPrager {
   template <bool WithTangent>
   void update_impl(stress_type& stress, state_type& state, const strain_type& de,
                    tangent_type* tangent) const {
-    elastic_.add_elastic(stress, de);
-    const Modes trial = split(stress);
-    const T w_sum = trial.weight[0] + trial.weight[1] + trial.weight[2];  // q_trial^2
-    const T q0 = coefficients_.k - coefficients_.alpha * trial.p;  // q on the surface at p_trial
+    // The trial stress in scalars, every load before the first store (see add_elastic).
+    const T e0 = de[0], e1 = de[1], e2 = de[2], e3 = de[3], e4 = de[4], e5 = de[5], e6 = de[6];
+    const T volumetric = lame_ * (e0 + e1 + e2);
+    const T t0 = stress[0] + (volumetric + shear2_ * e0);
+    const T t1 = stress[1] + (volumetric + shear2_ * e1);
+    const T t2 = stress[2] + (volumetric + shear2_ * e2);
+    const T t3 = stress[3] + (shear_plus_ * e3 + shear_minus_ * e4);
+    const T t4 = stress[4] + (shear_plus_ * e4 + shear_minus_ * e3);
+    const T t5 = stress[5] + bending_ * e5;
+    const T t6 = stress[6] + bending_ * e6;
+    const T p = (t0 + t1 + t2) * (T(1) / 3);
+    const T d0 = t0 - p, d1 = t1 - p, d2 = t2 - p;
+    const T sum = t3 + t4, difference = t3 - t4;  // twice the symmetric and skew shear
+    const T w0 =
+        symmetric_weight_ * (d0 * d0 + d1 * d1 + d2 * d2) + half_symmetric_weight_ * sum * sum;
+    const T w1 = quarter_skew_weight_ * difference * difference;
+    const T w2 = couple_weight_ * (t5 * t5 + t6 * t6);
+    const T w_sum = w0 + w1 + w2;                            // q_trial^2
+    const T q0 = coefficients_.k - coefficients_.alpha * p;  // q on the surface at p_trial
     // f_trial = q_trial - q0 <= 0, decided without the square root so the branch resolves early.
-    if (q0 >= T(0) && w_sum <= q0 * q0) {
+    if ((q0 >= T(0)) & (w_sum <= q0 * q0)) {
+      stress << t0, t1, t2, t3, t4, t5, t6;
       state.plastic = 0.0;
       if constexpr (WithTangent) *tangent = elastic_.tangent();
       return;
     }
+    stress << t0, t1, t2, t3, t4, t5, t6;
+    plastic_return<WithTangent>(stress, state, tangent, p, w0, w1, w2, w_sum, q0);
+  }
+
+  // The return of the plastic trial state `stress`, out of line so that the elastic path above
+  // stays short (no spills, no saved registers); the trial's split (p, the weights of q^2,
+  // q_trial^2, q0) comes in registers.
+  template <bool WithTangent>
+  [[gnu::noinline]] void plastic_return(stress_type& stress, state_type& state,
+                                        tangent_type* tangent, T p_trial, T w0, T w1, T w2, T w_sum,
+                                        T q0) const {
+    const Modes trial{p_trial, {w0, w1, w2}};
     state.plastic = 1.0;
     const T q_trial = std::sqrt(w_sum);
     if (q0 <= T(0) && is_apex(trial.weight, q0, slope_)) {
@@ -355,6 +390,10 @@ class CosseratDruckerPrager {
   T c_max_{};
   T inverse_rate_max_{};  // 1 / (slope + c_max)
   T inverse_rate_min_{};  // 1 / (slope + c_min), infinity for 0
+  // The elastic moduli as add_elastic uses them and the weights of q^2 for the trial's
+  // (t3 + t4) and (t3 - t4).
+  T lame_{}, shear2_{}, shear_plus_{}, shear_minus_{}, bending_{};
+  T half_symmetric_weight_{}, quarter_skew_weight_{};
 };
 
 static_assert(ConstitutiveModel<CosseratDruckerPrager<double>>);
