@@ -373,13 +373,17 @@ class Simulation {
     // Contact acts on the updated velocity only, so the acceleration (and through FLIP the
     // particles) carries its impulse; boundary conditions come last and win.
     correct_contact(nodes_.velocity, spin_field(nodes_.spin), dt, contact::Phase::end_velocity);
-    // The grid-to-particle pass reads velocity and acceleration from one component array each.
+    apply_boundary_conditions(nodes_.momentum);
+    apply_boundary_conditions(nodes_.velocity);
+    if constexpr (is_cosserat) {
+      apply_rotation_conditions(nodes_.spin_momentum);
+      apply_rotation_conditions(nodes_.spin);
+    }
+    // The grid-to-particle pass reads each node's velocity and acceleration as one record.
     gather_.resize(static_cast<std::size_t>(Gathered::all * count));
     double* const gathered = gather_.data();
     COSMPM_OMP_PARALLEL_FOR(threads_, count)
     for (Index n = 0; n < count; ++n) {
-      apply_boundary_conditions(n, nodes_.momentum[n]);
-      apply_boundary_conditions(n, nodes_.velocity[n]);
       nodes_.acceleration[n] = (nodes_.velocity[n] - nodes_.momentum[n]) / dt;
       double* const record = gathered + n * Gathered::all;
       for (int d = 0; d < Dim; ++d) {
@@ -387,8 +391,6 @@ class Simulation {
         record[Gathered::acceleration + d] = nodes_.acceleration[n][d];
       }
       if constexpr (is_cosserat) {
-        apply_rotation_conditions(n, nodes_.spin_momentum[n]);
-        apply_rotation_conditions(n, nodes_.spin[n]);
         nodes_.spin_acceleration[n] = (nodes_.spin[n] - nodes_.spin_momentum[n]) / dt;
         record[Gathered::spin] = nodes_.spin[n];
         record[Gathered::spin_acceleration] = nodes_.spin_acceleration[n];
@@ -416,12 +418,15 @@ class Simulation {
         : origin(grid.origin()), inverse_cell_size(grid.inverse_cell_size()) {
       for (int d = 0; d < Dim; ++d) cells[d] = static_cast<double>(grid.cells(d));
     }
-    bool locate(const Vec<Dim>& x, std::array<Index, Dim>& cell) const {
+    // Lane l of positions in cell units (x - origin) / h.
+    template <int W>
+    bool locate_cell_units(const std::array<Pack<W>, Dim>& xi, int l,
+                           std::array<Index, Dim>& cell) const {
       bool inside = true;
       for (int d = 0; d < Dim; ++d) {
-        const double xi = (x[d] - origin[d]) * inverse_cell_size[d];
-        inside = inside && xi > 0.0 && xi < cells[d];
-        cell[d] = inside ? static_cast<Index>(xi) : 0;
+        const double x = lane<W>(xi[d], l);
+        inside = inside && x > 0.0 && x < cells[d];
+        cell[d] = inside ? static_cast<Index>(x) : 0;
       }
       return inside;
     }
@@ -482,6 +487,8 @@ class Simulation {
         pass.stencil_grid, [&](int l) -> const Vec<Dim>& { return start[p + l]; },
         [&](int l) -> const Vec<Dim>& { return half[p + l]; });
     const auto grid_values = shape::gather<Gathered::all, with_gradient>(s, pass.records);
+    // New positions in cell units, for the box test and the particles' blocks.
+    std::array<P, Dim> xi;
     for (int d = 0; d < Dim; ++d) {
       const P v_grid = grid_values.value[Gathered::velocity + d];
       const P a_grid = grid_values.value[Gathered::acceleration + d];
@@ -489,6 +496,7 @@ class Simulation {
       const P x_old = make_pack<W>([&](int l) { return x[p + l][d]; });
       const P v_new = flip * (v_old + dt * a_grid) + (1.0 - flip) * v_grid;
       const P x_new = x_old + dt * v_grid;
+      xi[d] = (x_new - pass.box.origin[d]) * pass.box.inverse_cell_size[d];
       for (int l = 0; l < W; ++l) {
         v[p + l][d] = lane<W>(v_new, l);
         x[p + l][d] = lane<W>(x_new, l);
@@ -515,7 +523,7 @@ class Simulation {
           record_first(first_bad, q);
       }
       std::array<Index, Dim> cell;
-      if (!pass.box.locate(x[q], cell)) [[unlikely]] {
+      if (!pass.box.template locate_cell_units<W>(xi, l, cell)) [[unlikely]] {
         record_first(first_outside, q);
       } else if (const Index block = block_of_cell(cell); block != particle_block_[q]) {
         particle_block_[q] = block;  // sorted again at the next particle-to-grid map
@@ -565,13 +573,13 @@ class Simulation {
   // The constitutive update of one particle; false if the stress came out non-finite.
   COSMPM_ALWAYS_INLINE bool update_constitutive(Index q, const rates_type& rates, double dt) {
     auto& stress = particles_.template get<particles::field::Stress<model_type>>()[q];
-    const stress_type updated = Continuum::updated_stress(
+    Continuum::update_stress(
         model_, rates, dt, stress,
         particles_.template get<particles::field::MaterialState<model_type>>()[q],
         particles_.template get<particles::field::Strain<model_type>>()[q]);
-    stress = updated;
-    // x * 0 is 0 for finite x and NaN otherwise: one sum instead of a test per component.
-    return (updated.array() * 0.0).sum() == 0.0;
+    // A non-finite component makes the sum non-finite (finite stresses near 1e308 that would
+    // overflow it do not occur in soil).
+    return std::isfinite(stress.sum());
   }
 
   // Particle l's rates from a gather whose first fields carry gradients.
@@ -678,10 +686,8 @@ class Simulation {
     }
     correct_contact(nodes_.velocity, spin_field(nodes_.spin), current_dt_,
                     contact::Phase::remapped_velocity);
-    for (Index n = 0; n < count; ++n) {
-      apply_boundary_conditions(n, nodes_.velocity[n]);
-      if constexpr (is_cosserat) apply_rotation_conditions(n, nodes_.spin[n]);
-    }
+    apply_boundary_conditions(nodes_.velocity);
+    if constexpr (is_cosserat) apply_rotation_conditions(nodes_.spin);
   }
 
   // Stage 4a: particle rates (velocity gradient; Cosserat: spin and its gradient) from a
@@ -813,10 +819,8 @@ class Simulation {
     }
     correct_contact(nodes_.momentum, spin_field(nodes_.spin_momentum), current_dt_,
                     contact::Phase::start_velocity);
-    for (Index n = 0; n < grid_.node_count(); ++n) {
-      apply_boundary_conditions(n, nodes_.momentum[n]);
-      if constexpr (is_cosserat) apply_rotation_conditions(n, nodes_.spin_momentum[n]);
-    }
+    apply_boundary_conditions(nodes_.momentum);
+    if constexpr (is_cosserat) apply_rotation_conditions(nodes_.spin_momentum);
   }
 
   std::vector<double>* spin_field(std::vector<double>& spin) {
@@ -841,13 +845,11 @@ class Simulation {
     contact_.correct(view);
   }
 
-  void apply_rotation_conditions(Index node, double& spin) const {
-    const auto ijk = grid_.node_ijk(node);
-    for (int axis = 0; axis < Dim; ++axis) {
-      if ((ijk[axis] == 0 && boundary_.rotation_fixed(2 * axis)) ||
-          (ijk[axis] == grid_.nodes(axis) - 1 && boundary_.rotation_fixed(2 * axis + 1))) {
-        spin = 0.0;
-      }
+  // Zero spin on the faces whose rotation is fixed.
+  void apply_rotation_conditions(std::vector<double>& spin) const {
+    for (int face = 0; face < 2 * Dim; ++face) {
+      if (!boundary_.rotation_fixed(face)) continue;
+      for_each_face_node(face / 2, face % 2 == 1, [&](Index n) { spin[n] = 0.0; });
     }
   }
 
@@ -859,21 +861,43 @@ class Simulation {
     particles_.template get<particles::field::MicroRotation>()[p] += dt * spin_grid;
   }
 
-  void apply_boundary_conditions(Index node, Vec<Dim>& velocity) const {
-    const auto ijk = grid_.node_ijk(node);
-    for (int axis = 0; axis < Dim; ++axis) {
-      if (ijk[axis] == 0) {
-        grid::BoundaryConditions<Dim>::apply(boundary_[2 * axis], axis, false, velocity);
-      }
-      if (ijk[axis] == grid_.nodes(axis) - 1) {
-        grid::BoundaryConditions<Dim>::apply(boundary_[2 * axis + 1], axis, true, velocity);
-      }
+  // The face conditions on a nodal velocity field, face by face in face order, so a node on
+  // several faces (a corner) takes them in the order of the faces.
+  void apply_boundary_conditions(std::vector<Vec<Dim>>& velocity) const {
+    for (int face = 0; face < 2 * Dim; ++face) {
+      const auto& condition = boundary_[face];
+      if (condition.kind == grid::BoundaryKind::free) continue;
+      const int axis = face / 2;
+      const bool upper = face % 2 == 1;
+      for_each_face_node(axis, upper, [&](Index n) {
+        grid::BoundaryConditions<Dim>::apply(condition, axis, upper, velocity[n]);
+      });
     }
   }
 
-  // Components of the nodal arrays the transfers work on (component c of node n at
-  // c * node_count + n, so the nodes of a stencil row are adjacent). A particle scatters
-  // weighted-only components first, then those that also take a gradient term.
+  // f(n) for every node n on the lower (upper = false) or upper face normal to `axis`.
+  template <class F>
+  void for_each_face_node(int axis, bool upper, F&& f) const {
+    std::array<Index, Dim> ijk{};
+    ijk[axis] = upper ? grid_.nodes(axis) - 1 : 0;
+    Index total = 1;
+    for (int d = 0; d < Dim; ++d) {
+      if (d != axis) total *= grid_.nodes(d);
+    }
+    for (Index k = 0; k < total; ++k) {
+      Index rest = k;
+      for (int d = 0; d < Dim; ++d) {
+        if (d == axis) continue;
+        ijk[d] = rest % grid_.nodes(d);
+        rest /= grid_.nodes(d);
+      }
+      f(grid_.node_index(ijk));
+    }
+  }
+
+  // Components of the node records the transfers work on (shape/separable.hpp: C doubles per
+  // node). A particle scatters weighted-only components first, then those that also take a
+  // gradient term.
   struct Scattered {
     static constexpr int cosserat = is_cosserat ? 1 : 0;
     static constexpr int mass = 0;

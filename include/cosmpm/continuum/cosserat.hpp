@@ -35,13 +35,10 @@ requires(Model::is_cosserat) struct Cosserat {
   // The in-plane stress is rotated with the continuum spin (Jaumann, valid for a
   // non-symmetric tensor: S += dt (W S - S W)) and the couple-stress vector with it
   // (m += dt W m); then the model integrates the Cosserat deformation increment.
-  // Returns the new stress (see Classical::updated_stress).
-  static typename Model::stress_type updated_stress(
-      const Model& model, const rates_type<2>& rates, double dt,
-      const typename Model::stress_type& old_stress, typename Model::state_type& state,
-      typename Model::strain_type& accumulated_strain) {
+  static void update_stress(const Model& model, const rates_type<2>& rates, double dt,
+                            typename Model::stress_type& stress, typename Model::state_type& state,
+                            typename Model::strain_type& accumulated_strain) {
     const Mat<2>& L = rates.velocity_gradient;
-    typename Model::stress_type stress = old_stress;
     const double w = 0.5 * (L(0, 1) - L(1, 0)) * dt;
     const double sxx = stress[0], syy = stress[1], sxy = stress[3], syx = stress[4];
     // Tensor S with S(0,1) = s_xy, S(1,0) = s_yx: (W S - S W) entries.
@@ -63,7 +60,6 @@ requires(Model::is_cosserat) struct Cosserat {
     increment[6] = rates.spin_gradient[1] * dt;
     model.update(stress, state, increment);
     accumulated_strain += increment;
-    return stress;
   }
 
   // A particle's nodal force -V s_ij dN/dx_i as sum_i dN/dx_i b[j][i] for component j.

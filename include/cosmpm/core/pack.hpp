@@ -15,7 +15,10 @@
 
 namespace cosmpm {
 
-#if defined(__GNUC__) || defined(__clang__)
+// COSMPM_PACK_WIDTH (1, 2 or 4) overrides the choice, e.g. to compare widths.
+#if defined(COSMPM_PACK_WIDTH)
+inline constexpr int pack_width = COSMPM_PACK_WIDTH;
+#elif defined(__GNUC__) || defined(__clang__)
 #if defined(__AVX__)
 inline constexpr int pack_width = 4;
 #else

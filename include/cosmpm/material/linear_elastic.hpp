@@ -31,9 +31,14 @@ class LinearElastic {
   T p_wave_modulus() const { return lambda_ + 2 * shear_; }
 
   void update(stress_type& stress, state_type& /*state*/, const strain_type& de) const {
-    // One vector expression over the four components (two SSE2 packets, no partial writes).
+    // Component by component: callers that just wrote single components of the stress (the
+    // engine's Jaumann rotation) would stall reading them back as whole vectors.
     const T volumetric = lambda_ * (de[0] + de[1] + de[2]);
-    stress += 2 * shear_ * de + volumetric * stress_type(1, 1, 1, 0);
+    const T two_shear = 2 * shear_;
+    stress[0] += volumetric + two_shear * de[0];
+    stress[1] += volumetric + two_shear * de[1];
+    stress[2] += volumetric + two_shear * de[2];
+    stress[3] += two_shear * de[3];
   }
 
   void update(stress_type& stress, state_type& state, const strain_type& de,
