@@ -35,6 +35,12 @@
 #include "cosmpm/shape/concept.hpp"
 #include "cosmpm/shape/separable.hpp"
 
+#if defined(__GNUC__)
+#define COSMPM_INLINE_LAMBDA __attribute__((always_inline))
+#else
+#define COSMPM_INLINE_LAMBDA
+#endif
+
 namespace cosmpm {
 
 template <int Dim>
@@ -347,7 +353,8 @@ class Simulation {
         if constexpr (is_cosserat) nodes_.spin_momentum[n] = nodes_.spin[n] = 0.0;
         continue;
       }
-      const Vec<Dim> v_start = nodes_.momentum[n] / m;
+      const double inverse_mass = 1.0 / m;  // one division per node instead of 2 Dim
+      const Vec<Dim> v_start = nodes_.momentum[n] * inverse_mass;
       Vec<Dim> force = nodes_.force[n];
       if (damping > 0.0) {
         // Cundall: oppose the motion with a fraction of the unbalanced force, per component.
@@ -357,7 +364,7 @@ class Simulation {
         }
       }
       nodes_.momentum[n] = v_start;
-      nodes_.velocity[n] = v_start + dt * force / m;
+      nodes_.velocity[n] = v_start + (dt * inverse_mass) * force;
       if constexpr (is_cosserat) {
         const double inertia = nodes_.rotational_inertia[n];
         const double spin_start = nodes_.spin_momentum[n] / inertia;
@@ -382,16 +389,17 @@ class Simulation {
     // The grid-to-particle pass reads each node's velocity and acceleration as one record.
     gather_.resize(static_cast<std::size_t>(Gathered::all * count));
     double* const gathered = gather_.data();
+    const double inverse_dt = 1.0 / dt;
     COSMPM_OMP_PARALLEL_FOR(threads_, count)
     for (Index n = 0; n < count; ++n) {
-      nodes_.acceleration[n] = (nodes_.velocity[n] - nodes_.momentum[n]) / dt;
+      nodes_.acceleration[n] = (nodes_.velocity[n] - nodes_.momentum[n]) * inverse_dt;
       double* const record = gathered + n * Gathered::all;
       for (int d = 0; d < Dim; ++d) {
         record[Gathered::velocity + d] = nodes_.velocity[n][d];
         record[Gathered::acceleration + d] = nodes_.acceleration[n][d];
       }
       if constexpr (is_cosserat) {
-        nodes_.spin_acceleration[n] = (nodes_.spin[n] - nodes_.spin_momentum[n]) / dt;
+        nodes_.spin_acceleration[n] = (nodes_.spin[n] - nodes_.spin_momentum[n]) * inverse_dt;
         record[Gathered::spin] = nodes_.spin[n];
         record[Gathered::spin_acceleration] = nodes_.spin_acceleration[n];
       }
@@ -403,9 +411,9 @@ class Simulation {
   // particles instead of three, at the same (start-of-step) stencil.
   void map_to_particles(double dt, bool with_stress_update = false) {
     if (with_stress_update) {
-      map_to_particles_impl<true>(dt);
+      dispatch_flip<true>(dt);
     } else {
-      map_to_particles_impl<false>(dt);
+      dispatch_flip<false>(dt);
     }
   }
 
@@ -432,7 +440,17 @@ class Simulation {
     }
   };
 
+  // Pure FLIP (the default) is its own instantiation: its update needs no blend.
   template <bool with_stress_update>
+  void dispatch_flip(double dt) {
+    if (parameters_.flip_fraction == 1.0) {
+      map_to_particles_impl<with_stress_update, true>(dt);
+    } else {
+      map_to_particles_impl<with_stress_update, false>(dt);
+    }
+  }
+
+  template <bool with_stress_update, bool pure_flip>
   void map_to_particles_impl(double dt) {
     require_start_stencils("map_to_particles");
     const Index count = particles_.size();
@@ -446,10 +464,12 @@ class Simulation {
     const Index packs = count / W;
     COSMPM_OMP_PARALLEL_FOR(threads_, count)
     for (Index b = 0; b < packs; ++b) {
-      map_from_grid<W, with_stress_update>(b * W, pass, first_outside, first_bad, first_moved);
+      map_from_grid<W, with_stress_update, pure_flip>(b * W, pass, first_outside, first_bad,
+                                                      first_moved);
     }
     for (Index p = packs * W; p < count; ++p) {
-      map_from_grid<1, with_stress_update>(p, pass, first_outside, first_bad, first_moved);
+      map_from_grid<1, with_stress_update, pure_flip>(p, pass, first_outside, first_bad,
+                                                      first_moved);
     }
     if (first_moved < count) blocks_changed_ = true;
     // A particle that left the grid usually also tore its neighbourhood: name the cause.
@@ -468,7 +488,7 @@ class Simulation {
 
   // Grid to particles p, ..., p + W - 1: stencils, node sums, velocity, position and
   // deformation run side by side in packs; the constitutive update is per particle.
-  template <int W, bool with_stress_update>
+  template <int W, bool with_stress_update, bool pure_flip>
   COSMPM_ALWAYS_INLINE void map_from_grid(Index p, const ParticleMapPass& pass,
                                           Index& first_outside, Index& first_bad,
                                           Index& first_moved) {
@@ -494,7 +514,8 @@ class Simulation {
       const P a_grid = grid_values.value[Gathered::acceleration + d];
       const P v_old = make_pack<W>([&](int l) { return v[p + l][d]; });
       const P x_old = make_pack<W>([&](int l) { return x[p + l][d]; });
-      const P v_new = flip * (v_old + dt * a_grid) + (1.0 - flip) * v_grid;
+      P v_new = v_old + dt * a_grid;
+      if constexpr (!pure_flip) v_new = flip * v_new + (1.0 - flip) * v_grid;
       const P x_new = x_old + dt * v_grid;
       xi[d] = (x_new - pass.box.origin[d]) * pass.box.inverse_cell_size[d];
       for (int l = 0; l < W; ++l) {
@@ -945,7 +966,8 @@ class Simulation {
     // Named outside the lambda: GCC 12 fails on C - W inside it.
     using Weighted = std::array<double, C>;
     using ByGradient = std::array<std::array<double, Dim>, C - W>;
-    for_each_particle_coloured([&](Index p) {
+    // Inlined into the block loop: the array addresses stay in registers across particles.
+    for_each_particle_coloured([&](Index p) COSMPM_INLINE_LAMBDA {
       stencil_type s;
       s.compute(stencil_grid, x[p], half[p]);
       if (block_of_cell(s.cell) != particle_block[p]) [[unlikely]] {
