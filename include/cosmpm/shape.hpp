@@ -5,4 +5,5 @@
 #include "cosmpm/shape/gimp.hpp"
 #include "cosmpm/shape/linear.hpp"
 #include "cosmpm/shape/quadratic_bspline.hpp"
+#include "cosmpm/shape/separable.hpp"
 #include "cosmpm/shape/stencil.hpp"

@@ -960,6 +960,7 @@ class Simulation {
     const Vec<Dim> gravity = parameters_.gravity;
     const Index count = particles_.size();
     Index first_misplaced = count;
+    Index first_invalid = count;
     const shape::StencilGrid<Dim> stencil_grid(grid_);
     stencil_cells_.resize(count);
     Vec<Dim>* const stencil_cells = stencil_cells_.data();
@@ -969,7 +970,10 @@ class Simulation {
     // Inlined into the block loop: the array addresses stay in registers across particles.
     for_each_particle_coloured([&](Index p) COSMPM_INLINE_LAMBDA {
       stencil_type s;
-      s.compute(stencil_grid, x[p], half[p]);
+      if (!s.try_compute(stencil_grid, x[p], half[p])) [[unlikely]] {
+        record_first(first_invalid, p);  // reported after the (possibly parallel) loop
+        return;
+      }
       if (block_of_cell(s.cell) != particle_block[p]) [[unlikely]] {
         record_first(first_misplaced, p);
         return;
@@ -999,6 +1003,10 @@ class Simulation {
       }
       shape::scatter<W>(s, scatter_.data(), weighted, by_gradient);
     });
+    if (first_invalid < count) {
+      stencil_type s;
+      s.compute(stencil_grid, x[first_invalid], half[first_invalid]);  // throws, naming it
+    }
     return first_misplaced == count;
   }
 

@@ -170,6 +170,15 @@ struct SeparableStencil : StencilFactors<Dim, K, double> {
   // the kernel's support along an axis, or GIMP's half-width is out of range.
   COSMPM_ALWAYS_INLINE void compute(const StencilGrid<Dim>& grid, const Vec<Dim>& x,
                                     const Vec<Dim>& half_width) {
+    if (!try_compute(grid, x, half_width)) [[unlikely]] {
+      report_invalid(grid, x, half_width);
+    }
+  }
+
+  // As compute(), but returns false instead of throwing (and leaves the stencil unusable):
+  // for loops inside OpenMP regions, which an exception must not leave.
+  COSMPM_ALWAYS_INLINE bool try_compute(const StencilGrid<Dim>& grid, const Vec<Dim>& x,
+                                        const Vec<Dim>& half_width) {
     COSMPM_UNROLL
     for (int d = 0; d < Dim; ++d) {
       const Index n = grid.nodes[d];
@@ -181,7 +190,7 @@ struct SeparableStencil : StencilFactors<Dim, K, double> {
         valid = valid && half_width[d] > K::min_half_width && half_width[d] <= K::max_half_width;
       }
       if (!valid) [[unlikely]] {
-        detail::throw_bad_stencil_input<K>(d, x[d], xi, half_width[d], n);
+        return false;
       }
       xi = xi < grid.last[d] ? xi : grid.last[d];
       const Index containing = static_cast<Index>(xi);  // xi >= 0: truncation is floor
@@ -189,6 +198,22 @@ struct SeparableStencil : StencilFactors<Dim, K, double> {
       position_in_cells[d] = xi;
     }
     compute_from_cell_units(grid, position_in_cells, half_width);
+    return true;
+  }
+
+  // Names the first axis whose input is out of range (cold: runs only before an error).
+  [[gnu::cold, gnu::noinline]] static void report_invalid(const StencilGrid<Dim>& grid,
+                                                          const Vec<Dim>& x,
+                                                          const Vec<Dim>& half_width) {
+    for (int d = 0; d < Dim; ++d) {
+      const double xi = (x[d] - grid.origin[d]) * grid.inverse_cell_size[d];
+      bool valid = xi >= 0.0 && xi <= grid.upper[d] && grid.nodes[d] >= support;
+      if constexpr (UsesHalfWidth<K>) {
+        valid = valid && half_width[d] > K::min_half_width && half_width[d] <= K::max_half_width;
+      }
+      if (!valid) detail::throw_bad_stencil_input<K>(d, x[d], xi, half_width[d], grid.nodes[d]);
+    }
+    throw Error(std::string("shape::Stencil<") + K::name() + ">: invalid input");
   }
 
   // From a position already in cell units and checked by compute() (0 <= xi <= last node):
