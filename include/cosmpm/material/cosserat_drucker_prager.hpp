@@ -82,11 +82,7 @@ class CosseratDruckerPrager {
     }
     c_max_ = std::max({mode_stiffness_[0], mode_stiffness_[1], mode_stiffness_[2]});
     inverse_rate_max_ = 1 / (slope_ + c_max_);
-    lame_ = elastic_.iso.lambda;
-    shear2_ = 2 * g;
-    shear_plus_ = g + elastic_.cosserat_shear;
-    shear_minus_ = g - elastic_.cosserat_shear;
-    bending_ = elastic_.bending_modulus();
+    moduli_ = elastic_.moduli();
     half_symmetric_weight_ = symmetric_weight_ / 2;
     quarter_skew_weight_ = skew_weight_ / 4;
     const T rate_min = std::min({rate_[0], rate_[1], rate_[2]});
@@ -263,16 +259,10 @@ class CosseratDruckerPrager {
   template <bool WithTangent>
   void update_impl(stress_type& stress, state_type& state, const strain_type& de,
                    tangent_type* tangent) const {
-    // The trial stress in scalars, every load before the first store (see add_elastic).
-    const T e0 = de[0], e1 = de[1], e2 = de[2], e3 = de[3], e4 = de[4], e5 = de[5], e6 = de[6];
-    const T volumetric = lame_ * (e0 + e1 + e2);
-    const T t0 = stress[0] + (volumetric + shear2_ * e0);
-    const T t1 = stress[1] + (volumetric + shear2_ * e1);
-    const T t2 = stress[2] + (volumetric + shear2_ * e2);
-    const T t3 = stress[3] + (shear_plus_ * e3 + shear_minus_ * e4);
-    const T t4 = stress[4] + (shear_plus_ * e4 + shear_minus_ * e3);
-    const T t5 = stress[5] + bending_ * e5;
-    const T t6 = stress[6] + bending_ * e6;
+    // The trial stress in scalars, every load before the first store (see trial_stress).
+    const std::array<T, 7> trial = detail::trial_stress(stress, de, moduli_);
+    const T t0 = trial[0], t1 = trial[1], t2 = trial[2], t3 = trial[3], t4 = trial[4],
+            t5 = trial[5], t6 = trial[6];
     const T p = (t0 + t1 + t2) * (T(1) / 3);
     const T d0 = t0 - p, d1 = t1 - p, d2 = t2 - p;
     const T sum = t3 + t4, difference = t3 - t4;  // twice the symmetric and skew shear
@@ -392,7 +382,7 @@ class CosseratDruckerPrager {
   T inverse_rate_min_{};  // 1 / (slope + c_min), infinity for 0
   // The elastic moduli as add_elastic uses them and the weights of q^2 for the trial's
   // (t3 + t4) and (t3 - t4).
-  T lame_{}, shear2_{}, shear_plus_{}, shear_minus_{}, bending_{};
+  detail::CosseratModuli<T> moduli_{};
   T half_symmetric_weight_{}, quarter_skew_weight_{};
 };
 

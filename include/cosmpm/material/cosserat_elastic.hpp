@@ -15,6 +15,7 @@
 //   s_ij = lambda e_kk delta_ij + (G + Gc) e_ij + (G - Gc) e_ji,   m_3i = 2 G l^2 kappa_3i.
 // The power s_ij e_ij + m_3i kappa_3i is the plain dot product of the two 7-vectors.
 #include <Eigen/Core>
+#include <array>
 #include <string_view>
 
 #include "cosmpm/core/error.hpp"
@@ -25,6 +26,34 @@
 namespace cosmpm::material {
 
 namespace detail {
+
+// The moduli of the Cosserat elastic law as the trial stress uses them.
+template <class T>
+struct CosseratModuli {
+  T lambda;   // Lame's lambda
+  T shear2;   // 2 G
+  T plus;     // G + Gc
+  T minus;    // G - Gc
+  T bending;  // 2 G l^2
+};
+
+// stress + D de as seven scalars. Every input is read before the caller writes anything: a
+// store through the stress may alias the moduli and the increment as far as the compiler
+// knows and would force reloads; and scalar loads, since a 16-byte load across two earlier
+// stores of the stress would stall.
+template <class T, class V>
+std::array<T, 7> trial_stress(const V& stress, const Eigen::Matrix<T, 7, 1>& de,
+                              const CosseratModuli<T>& m) {
+  const T d0 = de[0], d1 = de[1], d2 = de[2], d3 = de[3], d4 = de[4], d5 = de[5], d6 = de[6];
+  const T volumetric = m.lambda * (d0 + d1 + d2);
+  return {stress[0] + (volumetric + m.shear2 * d0),
+          stress[1] + (volumetric + m.shear2 * d1),
+          stress[2] + (volumetric + m.shear2 * d2),
+          stress[3] + (m.plus * d3 + m.minus * d4),
+          stress[4] + (m.plus * d4 + m.minus * d3),
+          stress[5] + m.bending * d5,
+          stress[6] + m.bending * d6};
+}
 
 // The elastic part shared by the Cosserat models.
 template <class T>
@@ -52,31 +81,16 @@ struct CosseratElasticity {
     return iso.p_wave() > shear_wave ? iso.p_wave() : shear_wave;
   }
 
-  // stress += D de. All loads before the first store: a store through `stress` may alias the
-  // moduli and the increment as far as the compiler knows, and would force reloads. Scalar
-  // loads: a 16-byte load across two earlier stores of the stress would stall.
+  CosseratModuli<T> moduli() const {
+    return {iso.lambda, 2 * iso.shear, iso.shear + cosserat_shear, iso.shear - cosserat_shear,
+            bending_modulus()};
+  }
+
+  // stress += D de (see trial_stress).
   template <class V>
   void add_elastic(V& stress, const Eigen::Matrix<T, 7, 1>& de) const {
-    const T g2 = 2 * iso.shear;
-    const T plus = iso.shear + cosserat_shear;
-    const T minus = iso.shear - cosserat_shear;
-    const T bending = g2 * length * length;
-    const T d0 = de[0], d1 = de[1], d2 = de[2], d3 = de[3], d4 = de[4], d5 = de[5], d6 = de[6];
-    const T volumetric = iso.lambda * (d0 + d1 + d2);
-    const T s0 = stress[0] + (volumetric + g2 * d0);
-    const T s1 = stress[1] + (volumetric + g2 * d1);
-    const T s2 = stress[2] + (volumetric + g2 * d2);
-    const T s3 = stress[3] + (plus * d3 + minus * d4);
-    const T s4 = stress[4] + (plus * d4 + minus * d3);
-    const T s5 = stress[5] + bending * d5;
-    const T s6 = stress[6] + bending * d6;
-    stress[0] = s0;
-    stress[1] = s1;
-    stress[2] = s2;
-    stress[3] = s3;
-    stress[4] = s4;
-    stress[5] = s5;
-    stress[6] = s6;
+    const std::array<T, 7> trial = trial_stress(stress, de, moduli());
+    for (int i = 0; i < 7; ++i) stress[i] = trial[i];
   }
 
   Eigen::Matrix<T, 7, 7> tangent() const {
