@@ -344,7 +344,7 @@ class Simulation {
     const double empty = empty_node_mass();
     const double damping = parameters_.damping;
     const Index count = grid_.node_count();
-    COSMPM_OMP_PARALLEL_FOR(threads_, count)
+    COSMPM_OMP_PARALLEL_FOR(threads_, count, 512)
     for (Index n = 0; n < count; ++n) {
       const double m = nodes_.mass[n];
       if (m <= empty) {
@@ -390,7 +390,7 @@ class Simulation {
     gather_.resize(static_cast<std::size_t>(Gathered::all * count));
     double* const gathered = gather_.data();
     const double inverse_dt = 1.0 / dt;
-    COSMPM_OMP_PARALLEL_FOR(threads_, count)
+    COSMPM_OMP_PARALLEL_FOR(threads_, count, 512)
     for (Index n = 0; n < count; ++n) {
       nodes_.acceleration[n] = (nodes_.velocity[n] - nodes_.momentum[n]) * inverse_dt;
       double* const record = gathered + n * Gathered::all;
@@ -462,7 +462,7 @@ class Simulation {
     // pack_width particles at a time, then the rest one by one.
     constexpr int W = pack_width;
     const Index packs = count / W;
-    COSMPM_OMP_PARALLEL_FOR(threads_, count)
+    COSMPM_OMP_PARALLEL_FOR(threads_, count, 128)
     for (Index b = 0; b < packs; ++b) {
       map_from_grid<W, with_stress_update, pure_flip>(b * W, pass, first_outside, first_bad,
                                                       first_moved);
@@ -734,7 +734,7 @@ class Simulation {
     auto& L = particles_.template get<particles::field::VelocityGradient<Dim>>();
     const Index count = particles_.size();
     particle_rates_.resize(count);
-    COSMPM_OMP_PARALLEL_FOR(threads_, count)
+    COSMPM_OMP_PARALLEL_FOR(threads_, count, 256)
     for (Index p = 0; p < count; ++p) {
       stencil_type s;
       start_stencil(p, stencil_grid, s);
@@ -750,7 +750,7 @@ class Simulation {
             "Simulation::update_stress: call velocity_gradient_from_grid first");
     const Index count = particles_.size();
     Index first_bad = count;
-    COSMPM_OMP_PARALLEL_FOR(threads_, count)
+    COSMPM_OMP_PARALLEL_FOR(threads_, count, 256)
     for (Index p = 0; p < count; ++p) {
       if (!update_particle_stress(p, particle_rates_[p], dt)) record_first(first_bad, p);
     }
@@ -1074,7 +1074,7 @@ class Simulation {
     for (const auto& blocks : colour_blocks_) {
       const Index block_count = static_cast<Index>(blocks.size());
       const Index* block_list = blocks.data();
-      COSMPM_OMP_PARALLEL_FOR(threads_, particles_.size())
+      COSMPM_OMP_PARALLEL_FOR(threads_, particles_.size(), 1)
       for (Index b = 0; b < block_count; ++b) {
         const Index block = block_list[b];
         for (Index i = start[block]; i < start[block + 1]; ++i) f(order[i]);

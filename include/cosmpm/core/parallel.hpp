@@ -5,10 +5,16 @@
 #define COSMPM_PRAGMA(x) _Pragma(#x)
 // Loops over fewer than cosmpm::parallel_threshold items run on one thread: a team's
 // start-up and barrier cost more than they save, and far more on a loaded machine.
-#define COSMPM_OMP_PARALLEL_FOR(threads, work) \
-  COSMPM_PRAGMA(omp parallel for schedule(static) num_threads(threads) if ((work) >= cosmpm::parallel_threshold))
+// Iterations are handed out in chunks as threads come free (dynamic), not split in equal
+// halves up front: on a shared machine one core can run at half the speed of the other,
+// and with equal halves the slow one sets the time. On this VM that made two threads no
+// faster than one (measured on a plain parallel loop). Every loop this macro serves has
+// independent iterations, so results do not depend on which thread ran which chunk.
+#define COSMPM_OMP_PARALLEL_FOR(threads, work, chunk)                                        \
+  COSMPM_PRAGMA(omp parallel for schedule(dynamic, chunk) num_threads(threads) if ((work) >= \
+                                                                               cosmpm::parallel_threshold))
 #else
-#define COSMPM_OMP_PARALLEL_FOR(threads, work)
+#define COSMPM_OMP_PARALLEL_FOR(threads, work, chunk)
 #endif
 
 namespace cosmpm {
