@@ -59,8 +59,9 @@ struct Case {
   double average_from = 0.015;    // m: the paper averages the draft over 15-35 mm
   double average_to = 0.035;
   double profile_at = 0.020;  // m: blade stress profile (the paper's Fig. 9)
-  // 0: OpenMP's default (every core). Results are bit-identical for any thread count; the
-  // default run takes 23 s on two threads against 32 s on one on the 2-core development VM.
+  // 0: OpenMP's default (every core). Results are bit-identical for any thread count. On
+  // the 2-core development VM the default run took 23 s on two threads against 32 s on one,
+  // but only while the host kept the two vCPUs on separate cores (docs/architecture.md).
   int threads = 0;
   std::string output_directory;  // default: out/flat_blade/<tag>
   bool write_frames = true;
