@@ -24,6 +24,7 @@
 
 #include "cosmpm/contact/single_field.hpp"
 #include "cosmpm/continuum/rates.hpp"
+#include "cosmpm/core/compiler.hpp"
 #include "cosmpm/core/error.hpp"
 #include "cosmpm/core/parallel.hpp"
 #include "cosmpm/core/types.hpp"
@@ -34,12 +35,6 @@
 #include "cosmpm/particles/fields.hpp"
 #include "cosmpm/shape/concept.hpp"
 #include "cosmpm/shape/separable.hpp"
-
-#if defined(__GNUC__)
-#define COSMPM_INLINE_LAMBDA __attribute__((always_inline))
-#else
-#define COSMPM_INLINE_LAMBDA
-#endif
 
 namespace cosmpm {
 
@@ -283,19 +278,19 @@ class Simulation {
       require(scatter(), "Simulation::map_to_grid: particle blocks inconsistent after sorting");
     }
     const Index count = grid_.node_count();
-    const Index size = with_forces ? Scattered::all : Scattered::weighted;  // per node
+    const Index size = with_forces ? ScatterRecord::all : ScatterRecord::weighted;  // per node
     const double* const scattered = scatter_.data();
     for (Index n = 0; n < count; ++n) {
       const double* const record = scattered + n * size;
-      nodes_.mass[n] = record[Scattered::mass];
+      nodes_.mass[n] = record[ScatterRecord::mass];
       for (int d = 0; d < Dim; ++d) {
-        nodes_.momentum[n][d] = record[Scattered::momentum + d];
-        if (with_forces) nodes_.force[n][d] = record[Scattered::force + d];
+        nodes_.momentum[n][d] = record[ScatterRecord::momentum + d];
+        if (with_forces) nodes_.force[n][d] = record[ScatterRecord::force + d];
       }
       if constexpr (is_cosserat) {
-        nodes_.rotational_inertia[n] = record[Scattered::inertia];
-        nodes_.spin_momentum[n] = record[Scattered::spin_momentum];
-        if (with_forces) nodes_.moment[n] = record[Scattered::moment];
+        nodes_.rotational_inertia[n] = record[ScatterRecord::inertia];
+        nodes_.spin_momentum[n] = record[ScatterRecord::spin_momentum];
+        if (with_forces) nodes_.moment[n] = record[ScatterRecord::moment];
       }
     }
   }
@@ -321,14 +316,7 @@ class Simulation {
       start_stencil(p, stencil_grid, s);
       std::array<double, forces> weighted;
       std::array<std::array<double, Dim>, forces> by_gradient;
-      const auto b = Continuum::internal_force_coefficients(stress[p], vol[p]);
-      for (int d = 0; d < Dim; ++d) {
-        weighted[d] = mass[p] * gravity[d];
-        for (int e = 0; e < Dim; ++e) by_gradient[d][e] = b[d][e];
-      }
-      if constexpr (is_cosserat) {
-        Continuum::moment_coefficients(stress[p], vol[p], weighted[Dim], by_gradient[Dim]);
-      }
+      force_contribution(mass[p], vol[p], stress[p], gravity, weighted.data(), by_gradient);
       shape::scatter<0>(s, scatter_.data(), weighted, by_gradient);
     });
     for (Index n = 0; n < count; ++n) {
@@ -387,21 +375,21 @@ class Simulation {
       apply_rotation_conditions(nodes_.spin);
     }
     // The grid-to-particle pass reads each node's velocity and acceleration as one record.
-    gather_.resize(static_cast<std::size_t>(Gathered::all * count));
+    gather_.resize(static_cast<std::size_t>(GatherRecord::all * count));
     double* const gathered = gather_.data();
     const double inverse_dt = 1.0 / dt;
     COSMPM_OMP_PARALLEL_FOR(threads_, count, 512)
     for (Index n = 0; n < count; ++n) {
       nodes_.acceleration[n] = (nodes_.velocity[n] - nodes_.momentum[n]) * inverse_dt;
-      double* const record = gathered + n * Gathered::all;
+      double* const record = gathered + n * GatherRecord::all;
       for (int d = 0; d < Dim; ++d) {
-        record[Gathered::velocity + d] = nodes_.velocity[n][d];
-        record[Gathered::acceleration + d] = nodes_.acceleration[n][d];
+        record[GatherRecord::velocity + d] = nodes_.velocity[n][d];
+        record[GatherRecord::acceleration + d] = nodes_.acceleration[n][d];
       }
       if constexpr (is_cosserat) {
         nodes_.spin_acceleration[n] = (nodes_.spin[n] - nodes_.spin_momentum[n]) * inverse_dt;
-        record[Gathered::spin] = nodes_.spin[n];
-        record[Gathered::spin_acceleration] = nodes_.spin_acceleration[n];
+        record[GatherRecord::spin] = nodes_.spin[n];
+        record[GatherRecord::spin_acceleration] = nodes_.spin_acceleration[n];
       }
     }
   }
@@ -418,28 +406,6 @@ class Simulation {
   }
 
  private:
-  // Grid::contains with the grid's constants in registers (same arithmetic, same answer),
-  // also giving the cell that holds x (as shape::SeparableStencil finds it).
-  struct GridBox {
-    Vec<Dim> origin, inverse_cell_size, cells;
-    explicit GridBox(const grid::Grid<Dim>& grid)
-        : origin(grid.origin()), inverse_cell_size(grid.inverse_cell_size()) {
-      for (int d = 0; d < Dim; ++d) cells[d] = static_cast<double>(grid.cells(d));
-    }
-    // Lane l of positions in cell units (x - origin) / h.
-    template <int W>
-    bool locate_cell_units(const std::array<Pack<W>, Dim>& xi, int l,
-                           std::array<Index, Dim>& cell) const {
-      bool inside = true;
-      for (int d = 0; d < Dim; ++d) {
-        const double x = lane<W>(xi[d], l);
-        inside = inside && x > 0.0 && x < cells[d];
-        cell[d] = inside ? static_cast<Index>(x) : 0;
-      }
-      return inside;
-    }
-  };
-
   // Pure FLIP (the default) is its own instantiation: its update needs no blend.
   template <bool with_stress_update>
   void dispatch_flip(double dt) {
@@ -455,7 +421,7 @@ class Simulation {
     require_start_stencils("map_to_particles");
     const Index count = particles_.size();
     const ParticleMapPass pass{dt, parameters_.flip_fraction, gather_.data(),
-                               shape::StencilGrid<Dim>(grid_), GridBox(grid_)};
+                               shape::StencilGrid<Dim>(grid_)};
     Index first_outside = count;
     Index first_bad = count;
     Index first_moved = count;
@@ -483,7 +449,6 @@ class Simulation {
     double flip;
     const double* records;  // gather_
     shape::StencilGrid<Dim> stencil_grid;
-    GridBox box;
   };
 
   // Grid to particles p, ..., p + W - 1: stencils, node sums, velocity, position and
@@ -501,23 +466,23 @@ class Simulation {
     const double flip = pass.flip;
     // Velocity (and Cosserat spin) with gradients when the stress is updated here, then the
     // accelerations.
-    constexpr int with_gradient = with_stress_update ? Gathered::with_gradient : 0;
+    constexpr int with_gradient = with_stress_update ? GatherRecord::with_gradient : 0;
     shape::PackedStencil<Dim, Kernel, W> s;
     s.compute_from_cell_units(
         pass.stencil_grid, [&](int l) -> const Vec<Dim>& { return start[p + l]; },
         [&](int l) -> const Vec<Dim>& { return half[p + l]; });
-    const auto grid_values = shape::gather<Gathered::all, with_gradient>(s, pass.records);
+    const auto grid_values = shape::gather<GatherRecord::all, with_gradient>(s, pass.records);
     // New positions in cell units, for the box test and the particles' blocks.
     std::array<P, Dim> xi;
     for (int d = 0; d < Dim; ++d) {
-      const P v_grid = grid_values.value[Gathered::velocity + d];
-      const P a_grid = grid_values.value[Gathered::acceleration + d];
+      const P v_grid = grid_values.value[GatherRecord::velocity + d];
+      const P a_grid = grid_values.value[GatherRecord::acceleration + d];
       const P v_old = make_pack<W>([&](int l) { return v[p + l][d]; });
       const P x_old = make_pack<W>([&](int l) { return x[p + l][d]; });
       P v_new = v_old + dt * a_grid;
       if constexpr (!pure_flip) v_new = flip * v_new + (1.0 - flip) * v_grid;
       const P x_new = x_old + dt * v_grid;
-      xi[d] = (x_new - pass.box.origin[d]) * pass.box.inverse_cell_size[d];
+      xi[d] = (x_new - pass.stencil_grid.origin[d]) * pass.stencil_grid.inverse_cell_size[d];
       for (int l = 0; l < W; ++l) {
         v[p + l][d] = lane<W>(v_new, l);
         x[p + l][d] = lane<W>(x_new, l);
@@ -526,14 +491,14 @@ class Simulation {
     [[maybe_unused]] P volume_ratio;
     if constexpr (with_stress_update) {
       std::array<std::array<P, Dim>, Dim> L;
-      for (int i = 0; i < Dim; ++i) L[i] = grid_values.gradient[Gathered::velocity + i];
+      for (int i = 0; i < Dim; ++i) L[i] = grid_values.gradient[GatherRecord::velocity + i];
       volume_ratio = update_deformation<W>(p, L, dt);
     }
     for (int l = 0; l < W; ++l) {
       const Index q = p + l;
       if constexpr (is_cosserat) {
-        update_particle_rotation(q, dt, flip, lane<W>(grid_values.value[Gathered::spin], l),
-                                 lane<W>(grid_values.value[Gathered::spin_acceleration], l));
+        update_particle_rotation(q, dt, flip, lane<W>(grid_values.value[GatherRecord::spin], l),
+                                 lane<W>(grid_values.value[GatherRecord::spin_acceleration], l));
       }
       if constexpr (with_stress_update) {
         const rates_type rates = rates_from<W>(grid_values, l);
@@ -543,8 +508,16 @@ class Simulation {
         if (!(finite && lane<W>(volume_ratio, l) > 0.0)) [[unlikely]]
           record_first(first_bad, q);
       }
+      bool inside = true;
       std::array<Index, Dim> cell;
-      if (!pass.box.template locate_cell_units<W>(xi, l, cell)) [[unlikely]] {
+      for (int d = 0; d < Dim; ++d) {
+        const double xi_lane = lane<W>(xi[d], l);
+        inside = inside && pass.stencil_grid.inside(d, xi_lane);
+        // Inside, xi < cells, so the floor is already what cell_of gives (its clamp to the last
+        // cell cost 13 instructions per particle here, from reloading the node counts).
+        cell[d] = inside ? static_cast<Index>(xi_lane) : 0;
+      }
+      if (!inside) [[unlikely]] {
         record_first(first_outside, q);
       } else if (const Index block = block_of_cell(cell); block != particle_block_[q]) {
         particle_block_[q] = block;  // sorted again at the next particle-to-grid map
@@ -609,13 +582,14 @@ class Simulation {
     rates_type rates;
     for (int i = 0; i < Dim; ++i) {
       for (int j = 0; j < Dim; ++j) {
-        rates.velocity_gradient(i, j) = lane<W>(grid_values.gradient[Gathered::velocity + i][j], l);
+        rates.velocity_gradient(i, j) =
+            lane<W>(grid_values.gradient[GatherRecord::velocity + i][j], l);
       }
     }
     if constexpr (is_cosserat) {
-      rates.spin = lane<W>(grid_values.value[Gathered::spin], l);
+      rates.spin = lane<W>(grid_values.value[GatherRecord::spin], l);
       for (int d = 0; d < Dim; ++d) {
-        rates.spin_gradient[d] = lane<W>(grid_values.gradient[Gathered::spin][d], l);
+        rates.spin_gradient[d] = lane<W>(grid_values.gradient[GatherRecord::spin][d], l);
       }
     }
     return rates;
@@ -721,12 +695,12 @@ class Simulation {
                 (!is_cosserat || static_cast<Index>(node_spin.size()) == nodes),
             "Simulation::velocity_gradient_from_grid: a nodal field does not match the grid's " +
                 std::to_string(nodes) + " nodes");
-    gather_.resize(static_cast<std::size_t>(Gathered::all * nodes));
-    constexpr int size = Gathered::with_gradient;  // per node: velocity (, spin)
+    gather_.resize(static_cast<std::size_t>(GatherRecord::all * nodes));
+    constexpr int size = GatherRecord::with_gradient;  // per node: velocity (, spin)
     for (Index n = 0; n < nodes; ++n) {
       for (int d = 0; d < Dim; ++d)
-        gather_[n * size + Gathered::velocity + d] = node_velocity[n][d];
-      if constexpr (is_cosserat) gather_[n * size + Gathered::spin] = node_spin[n];
+        gather_[n * size + GatherRecord::velocity + d] = node_velocity[n][d];
+      if constexpr (is_cosserat) gather_[n * size + GatherRecord::spin] = node_spin[n];
     }
     const double* const records = gather_.data();
     const shape::StencilGrid<Dim> stencil_grid(grid_);
@@ -919,7 +893,7 @@ class Simulation {
   // Components of the node records the transfers work on (shape/separable.hpp: C doubles per
   // node). A particle scatters weighted-only components first, then those that also take a
   // gradient term.
-  struct Scattered {
+  struct ScatterRecord {
     static constexpr int cosserat = is_cosserat ? 1 : 0;
     static constexpr int mass = 0;
     static constexpr int momentum = 1;  // Dim components
@@ -931,7 +905,7 @@ class Simulation {
     static constexpr int all = weighted + Dim + cosserat;
   };
   // Grid-to-particle: the fields with gradients (velocity, spin) first, then accelerations.
-  struct Gathered {
+  struct GatherRecord {
     static constexpr int cosserat = is_cosserat ? 1 : 0;
     static constexpr int velocity = 0;  // Dim components
     static constexpr int spin = Dim;
@@ -945,10 +919,10 @@ class Simulation {
   // particle no longer lies in the block it was sorted into.
   template <bool with_forces>
   bool scatter_particles() {
-    constexpr int W = Scattered::weighted;
-    constexpr int C = with_forces ? Scattered::all : W;
+    constexpr int W = ScatterRecord::weighted;
+    constexpr int C = with_forces ? ScatterRecord::all : W;
     const Index nodes = grid_.node_count();
-    scatter_.resize(static_cast<std::size_t>(Scattered::all * nodes));
+    scatter_.resize(static_cast<std::size_t>(ScatterRecord::all * nodes));
     std::fill(scatter_.begin(), scatter_.begin() + C * nodes, 0.0);
     const auto& x = particles_.template get<particles::field::Position<Dim>>();
     const auto& v = particles_.template get<particles::field::Velocity<Dim>>();
@@ -982,24 +956,17 @@ class Simulation {
       const double mp = mass[p];
       Weighted weighted;
       ByGradient by_gradient;
-      weighted[Scattered::mass] = mp;
-      for (int d = 0; d < Dim; ++d) weighted[Scattered::momentum + d] = mp * v[p][d];
+      weighted[ScatterRecord::mass] = mp;
+      for (int d = 0; d < Dim; ++d) weighted[ScatterRecord::momentum + d] = mp * v[p][d];
       if constexpr (is_cosserat) {
         const double inertia = mp * particles_.template get<particles::field::MicroInertia>()[p];
-        weighted[Scattered::inertia] = inertia;
-        weighted[Scattered::spin_momentum] =
+        weighted[ScatterRecord::inertia] = inertia;
+        weighted[ScatterRecord::spin_momentum] =
             inertia * particles_.template get<particles::field::MicroSpin>()[p];
       }
       if constexpr (with_forces) {
-        const auto b = Continuum::internal_force_coefficients(stress[p], vol[p]);
-        for (int d = 0; d < Dim; ++d) {
-          weighted[Scattered::force + d] = mp * gravity[d];
-          for (int e = 0; e < Dim; ++e) by_gradient[d][e] = b[d][e];
-        }
-        if constexpr (is_cosserat) {
-          Continuum::moment_coefficients(stress[p], vol[p], weighted[Scattered::moment],
-                                         by_gradient[Dim]);
-        }
+        force_contribution(mp, vol[p], stress[p], gravity, weighted.data() + ScatterRecord::force,
+                           by_gradient);
       }
       shape::scatter<W>(s, scatter_.data(), weighted, by_gradient);
     });
@@ -1008,6 +975,24 @@ class Simulation {
       s.compute(stencil_grid, x[first_invalid], half[first_invalid]);  // throws, naming it
     }
     return first_misplaced == count;
+  }
+
+  // A particle's force (and Cosserat moment) on the nodes as N weighted + grad N . by_gradient:
+  // weight m g and the stress divergence (Continuum::internal_force_coefficients), then the
+  // moment. weighted points at the force's first component.
+  template <std::size_t F>
+  static void force_contribution(double mass, double volume, const stress_type& stress,
+                                 const Vec<Dim>& gravity, double* weighted,
+                                 std::array<std::array<double, Dim>, F>& by_gradient) {
+    static_assert(F == Dim + (is_cosserat ? 1 : 0), "force and moment components");
+    const auto b = Continuum::internal_force_coefficients(stress, volume);
+    for (int d = 0; d < Dim; ++d) {
+      weighted[d] = mass * gravity[d];
+      for (int e = 0; e < Dim; ++e) by_gradient[d][e] = b[d][e];
+    }
+    if constexpr (is_cosserat) {
+      Continuum::moment_coefficients(stress, volume, weighted[Dim], by_gradient[Dim]);
+    }
   }
 
   // The block of cells a particle belongs to, from the cell that holds it.
@@ -1038,14 +1023,16 @@ class Simulation {
   void assign_blocks() {
     const auto& x = particles_.template get<particles::field::Position<Dim>>();
     const Index count = particles_.size();
+    const shape::StencilGrid<Dim> stencil_grid(grid_);
     particle_block_.resize(count);
     for (Index p = 0; p < count; ++p) {
       std::array<Index, Dim> cell;
       for (int d = 0; d < Dim; ++d) {
-        const double xi = (x[p][d] - grid_.origin()[d]) * grid_.inverse_cell_size()[d];
-        const double last = static_cast<double>(grid_.nodes(d) - 1);
-        const Index containing = static_cast<Index>(std::clamp(xi, 0.0, last));
-        cell[d] = std::min(containing, grid_.cells(d) - 1);
+        const double xi = (x[p][d] - stencil_grid.origin[d]) * stencil_grid.inverse_cell_size[d];
+        // Clamped into the grid (NaN to 0): the stencil reports a particle outside.
+        const double clamped =
+            xi >= 0.0 ? (xi < stencil_grid.last[d] ? xi : stencil_grid.last[d]) : 0.0;
+        cell[d] = stencil_grid.cell_of(d, clamped);
       }
       particle_block_[p] = block_of_cell(cell);
     }
@@ -1111,8 +1098,8 @@ class Simulation {
   std::vector<Index> particle_block_;
   std::vector<Index> order_;
   bool blocks_changed_ = false;
-  std::vector<double> scatter_;  // component arrays of the particle-to-grid maps
-  std::vector<double> gather_;   // component arrays of the grid-to-particle maps
+  std::vector<double> scatter_;  // node records of the particle-to-grid maps
+  std::vector<double> gather_;   // node records of the grid-to-particle maps
   // Particle positions in cell units at the last map_to_grid: the stencils of the step.
   std::vector<Vec<Dim>> stencil_cells_;
   std::vector<rates_type> particle_rates_;  // MUSL/USF: between rates and stress update

@@ -61,27 +61,6 @@ inline double lane(const Pack<W>& pack, int l) {
   }
 }
 
-template <int W>
-inline void set_lane(Pack<W>& pack, int l, double value) {
-  if constexpr (W == 1) {
-    (void)l;
-    pack = value;
-  } else {
-    pack[l] = value;
-  }
-}
-
-template <int W>
-inline Pack<W> broadcast(double value) {
-  if constexpr (W == 1) {
-    return value;
-  } else {
-    Pack<W> pack;
-    for (int l = 0; l < W; ++l) pack[l] = value;
-    return pack;
-  }
-}
-
 // Lane l from value(l), for values spread over memory (one particle's field each). Built in
 // one initialisation: filling lanes one at a time goes through memory.
 template <int W, class F>

@@ -11,26 +11,12 @@
 #include <string>
 #include <type_traits>
 
+#include "cosmpm/core/compiler.hpp"
 #include "cosmpm/core/error.hpp"
 #include "cosmpm/core/pack.hpp"
 #include "cosmpm/core/types.hpp"
 #include "cosmpm/grid/grid.hpp"
 #include "cosmpm/shape/concept.hpp"
-
-// Stencil loops have compile-time trip counts of at most 16: unrolled, every index below is
-// a constant and the per-axis factors stay in registers.
-#if defined(__clang__)
-#define COSMPM_UNROLL _Pragma("clang loop unroll(full)")
-#elif defined(__GNUC__)
-#define COSMPM_UNROLL _Pragma("GCC unroll 16")
-#else
-#define COSMPM_UNROLL
-#endif
-#if defined(__GNUC__)
-#define COSMPM_ALWAYS_INLINE [[gnu::always_inline]] inline
-#else
-#define COSMPM_ALWAYS_INLINE inline
-#endif
 
 namespace cosmpm::shape {
 
@@ -95,6 +81,29 @@ struct StencilGrid {
       next_stride *= nodes[d];
     }
   }
+
+  // Whether position xi (cell units, axis d) is one a stencil can be built at: inside the
+  // closed grid box up to round-off, the grid wide enough for the kernel, and (GIMP) the
+  // half-width in its range. NaN is never valid.
+  template <Kernel K>
+  bool valid(int d, double xi, double half_width) const {
+    bool ok = xi >= 0.0 && xi <= upper[d] && nodes[d] >= K::support;
+    if constexpr (UsesHalfWidth<K>) {
+      ok = ok && half_width > K::min_half_width && half_width <= K::max_half_width;
+    }
+    return ok;
+  }
+
+  // The cell holding position xi (cell units, axis d, 0 <= xi <= last node), in
+  // [0, cells - 1]: a position on the far face belongs to the last cell. Stencils and
+  // particle blocks both take the cell from here, so they always agree.
+  Index cell_of(int d, double xi) const {
+    const Index containing = static_cast<Index>(xi);  // xi >= 0: truncation is floor
+    return containing < nodes[d] - 2 ? containing : nodes[d] - 2;
+  }
+
+  // Whether position xi (cell units, axis d) lies strictly inside the grid box.
+  bool inside(int d, double xi) const { return xi > 0.0 && xi < last[d]; }
 };
 
 // The per-axis factors of a stencil, with Value = double for one particle or a Pack of
@@ -181,21 +190,14 @@ struct SeparableStencil : StencilFactors<Dim, K, double> {
                                         const Vec<Dim>& half_width) {
     COSMPM_UNROLL
     for (int d = 0; d < Dim; ++d) {
-      const Index n = grid.nodes[d];
-      double xi = (x[d] - grid.origin[d]) * grid.inverse_cell_size[d];
+      const double xi = (x[d] - grid.origin[d]) * grid.inverse_cell_size[d];
       // A particle on the far face (e.g. at Grid::node_position of the last node) can land a
       // few ulps past it after the scaling; that is round-off, not a particle outside.
-      bool valid = xi >= 0.0 && xi <= grid.upper[d] && n >= support;
-      if constexpr (UsesHalfWidth<K>) {
-        valid = valid && half_width[d] > K::min_half_width && half_width[d] <= K::max_half_width;
-      }
-      if (!valid) [[unlikely]] {
+      if (!grid.template valid<K>(d, xi, half_width[d])) [[unlikely]] {
         return false;
       }
-      xi = xi < grid.last[d] ? xi : grid.last[d];
-      const Index containing = static_cast<Index>(xi);  // xi >= 0: truncation is floor
-      cell[d] = containing < n - 2 ? containing : n - 2;
-      position_in_cells[d] = xi;
+      position_in_cells[d] = xi < grid.last[d] ? xi : grid.last[d];
+      cell[d] = grid.cell_of(d, position_in_cells[d]);
     }
     compute_from_cell_units(grid, position_in_cells, half_width);
     return true;
@@ -207,11 +209,9 @@ struct SeparableStencil : StencilFactors<Dim, K, double> {
                                                           const Vec<Dim>& half_width) {
     for (int d = 0; d < Dim; ++d) {
       const double xi = (x[d] - grid.origin[d]) * grid.inverse_cell_size[d];
-      bool valid = xi >= 0.0 && xi <= grid.upper[d] && grid.nodes[d] >= support;
-      if constexpr (UsesHalfWidth<K>) {
-        valid = valid && half_width[d] > K::min_half_width && half_width[d] <= K::max_half_width;
+      if (!grid.template valid<K>(d, xi, half_width[d])) {
+        detail::throw_bad_stencil_input<K>(d, x[d], xi, half_width[d], grid.nodes[d]);
       }
-      if (!valid) detail::throw_bad_stencil_input<K>(d, x[d], xi, half_width[d], grid.nodes[d]);
     }
     throw Error(std::string("shape::Stencil<") + K::name() + ">: invalid input");
   }
