@@ -102,6 +102,19 @@ def plot_blade_stress(runs, output):
     plt.close(fig)
 
 
+def nearest_frame(frames, start, speed, travel):
+    """The frame whose blade travel (m since cutting started) is nearest `travel`, and its travel."""
+    import h5py
+
+    best, best_travel = None, None
+    for path in frames:
+        with h5py.File(path, "r") as h5:
+            t = (h5.attrs["time"] - start) * speed
+        if best is None or abs(t - travel) < abs(best_travel - travel):
+            best, best_travel = path, t
+    return best, best_travel
+
+
 def plot_fields(run, output):
     import h5py
 
@@ -114,12 +127,7 @@ def plot_fields(run, output):
     with h5py.File(frames[0], "r") as h5:
         strain0 = h5["strain"][()]
         position0 = h5["position"][()]
-    best, best_travel = None, None
-    for path in frames:
-        with h5py.File(path, "r") as h5:
-            travel = (h5.attrs["time"] - start) * speed
-        if best is None or abs(travel - target) < abs(best_travel - target):
-            best, best_travel = path, travel
+    best, best_travel = nearest_frame(frames, start, speed, target)
     with h5py.File(best, "r") as h5:
         x = h5["position"][()]
         strain = h5["strain"][()] - strain0

@@ -18,6 +18,8 @@ import pathlib
 import h5py
 import numpy as np
 
+from plot_flat_blade import nearest_frame  # same folder
+
 
 def summary_of(run):
     with open(run / "summary.csv", newline="") as handle:
@@ -26,12 +28,7 @@ def summary_of(run):
 
 def frame_at(run, start, speed, travel):
     frames = sorted((run / "frames").glob("flat_blade_*.h5"))
-    best, best_travel = None, None
-    for path in frames:
-        with h5py.File(path, "r") as h5:
-            t = (h5.attrs["time"] - start) * speed
-        if best is None or abs(t - travel) < abs(best_travel - travel):
-            best, best_travel = path, t
+    best, best_travel = nearest_frame(frames, start, speed, travel)
     return frames[0], best, best_travel
 
 

@@ -26,38 +26,6 @@ namespace {
 constexpr double order_tol = 1e-12;
 
 template <int Dim>
-cosmpm::grid::Grid<Dim> grid_for_test();
-
-template <>
-cosmpm::grid::Grid<2> grid_for_test<2>() {
-  return {Vec<2>(-0.05, 0.02), Vec<2>(0.12, 0.07), {8, 5}};  // 15 mm x 14 mm cells
-}
-template <>
-cosmpm::grid::Grid<3> grid_for_test<3>() {
-  return {Vec<3>(0.1, -0.2, 0.3), Vec<3>(0.04, 0.06, 0.05), {4, 5, 4}};
-}
-
-template <int Dim>
-std::vector<Vec<Dim>> positions(const cosmpm::grid::Grid<Dim>& grid, unsigned seed) {
-  std::mt19937_64 rng(seed);
-  std::uniform_real_distribution<double> unit(0.0, 1.0);
-  std::vector<Vec<Dim>> points;
-  for (int i = 0; i < 200; ++i) {
-    Vec<Dim> x;
-    for (int d = 0; d < Dim; ++d) x[d] = grid.origin()[d] + unit(rng) * grid.extent()[d];
-    points.push_back(x);
-    // Within one cell of a face: where the splines fold their ghost nodes.
-    const int axis = i % Dim;
-    const double offset = unit(rng) * grid.cell_size()[axis];
-    x[axis] = i % 2 == 0 ? grid.origin()[axis] + offset
-                         : grid.origin()[axis] + grid.extent()[axis] - offset;
-    points.push_back(x);
-  }
-  for (Index n = 0; n < grid.node_count(); ++n) points.push_back(grid.node_position(n));
-  return points;
-}
-
-template <int Dim>
 Vec<Dim> half_width_for(double value) {
   return Vec<Dim>::Constant(value);
 }
@@ -74,12 +42,12 @@ std::vector<double> random_records(Index nodes, unsigned seed) {
 
 template <int Dim, class K>
 void check_gather_and_scatter() {
-  const auto grid = grid_for_test<Dim>();
+  const auto grid = test_grid<Dim>();
   const Vec<Dim> half = half_width_for<Dim>(Case<K>::half_width);
   constexpr int C = 3;
   constexpr int G = 2;  // the first two fields also with gradients
   const auto records = random_records<C>(grid.node_count(), 11);
-  for (const Vec<Dim>& x : positions(grid, 5)) {
+  for (const Vec<Dim>& x : sample_positions(grid, 5u, 200)) {
     CAPTURE(x.transpose());
     Stencil<Dim, K> full;
     full.compute(grid, x, half);
@@ -153,9 +121,9 @@ TEST_CASE_TEMPLATE("SeparableStencil: gather and scatter equal the sums over the
 
 TEST_CASE_TEMPLATE("SeparableStencil: the cached cell-unit position reproduces the stencil", K,
                    Linear, GIMP, QuadraticBSpline, CubicBSpline) {
-  const auto grid = grid_for_test<2>();
+  const auto grid = test_grid<2>();
   const Vec<2> half = half_width_for<2>(Case<K>::half_width);
-  for (const Vec<2>& x : positions(grid, 9)) {
+  for (const Vec<2>& x : sample_positions(grid, 9u, 200)) {
     CAPTURE(x.transpose());
     SeparableStencil<2, K> checked;
     checked.compute(grid, x, half);
@@ -191,12 +159,12 @@ TEST_CASE_TEMPLATE("PackedStencil: each lane gathers what one particle's stencil
   constexpr double lane_tol = 0.0;
 #endif
   constexpr int W = 2;
-  const auto grid = grid_for_test<2>();
+  const auto grid = test_grid<2>();
   const StencilGrid<2> stencil_grid(grid);
   const Vec<2> half = half_width_for<2>(Case<K>::half_width);
   constexpr int C = 4;
   const auto records = random_records<C>(grid.node_count(), 3);
-  const auto points = positions(grid, 13);
+  const auto points = sample_positions(grid, 13u, 200);
   for (std::size_t p = 0; p + 1 < points.size(); p += 2) {
     std::array<Vec<2>, W> xi;
     std::array<SeparableStencil<2, K>, W> one;

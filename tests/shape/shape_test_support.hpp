@@ -7,6 +7,7 @@
 #include <random>
 #include <vector>
 
+#include "cosmpm/grid/grid.hpp"
 #include "cosmpm/shape.hpp"
 
 namespace shape_test {
@@ -107,6 +108,47 @@ inline std::vector<double> sample_points(Index n, unsigned seed, int random_coun
   }
   // Cell midpoints and the quadratic/GIMP switch points, where the stencil moves.
   for (Index k = 0; k + 1 < n; ++k) points.push_back(static_cast<double>(k) + 0.5);
+  return points;
+}
+
+// The grids of the stencil tests: anisotropic cells with an offset origin, so positions and
+// cell units differ (2D: 15 mm x 14 mm cells as in the paper's 80 x 50 mesh).
+template <int Dim>
+cosmpm::grid::Grid<Dim> test_grid();
+
+template <>
+inline cosmpm::grid::Grid<2> test_grid<2>() {
+  // 8 x 5 cells of 15 mm x 14 mm, origin off zero so positions and cell units differ.
+  return {cosmpm::Vec<2>(-0.05, 0.02), cosmpm::Vec<2>(0.12, 0.07), {8, 5}};
+}
+
+template <>
+inline cosmpm::grid::Grid<3> test_grid<3>() {
+  return {cosmpm::Vec<3>(0.1, -0.2, 0.3), cosmpm::Vec<3>(0.04, 0.06, 0.05), {4, 5, 4}};
+}
+
+// Random points in the grid box, points within one cell of every face, every node (corners
+// included) and the box corners; fixed seed.
+template <int Dim>
+std::vector<cosmpm::Vec<Dim>> sample_positions(const cosmpm::grid::Grid<Dim>& grid, unsigned seed,
+                                               int count) {
+  std::mt19937_64 rng(seed);
+  std::uniform_real_distribution<double> unit(0.0, 1.0);
+  std::vector<cosmpm::Vec<Dim>> points;
+  const cosmpm::Vec<Dim> extent = grid.extent();
+  for (int i = 0; i < count; ++i) {
+    cosmpm::Vec<Dim> x;
+    for (int d = 0; d < Dim; ++d) x[d] = grid.origin()[d] + unit(rng) * extent[d];
+    points.push_back(x);
+    // The same point pushed into the first or last cell of one axis.
+    const int axis = i % Dim;
+    cosmpm::Vec<Dim> near_face = x;
+    const double offset = unit(rng) * grid.cell_size()[axis];
+    near_face[axis] =
+        (i % 2 == 0) ? grid.origin()[axis] + offset : grid.origin()[axis] + extent[axis] - offset;
+    points.push_back(near_face);
+  }
+  for (Index k = 0; k < grid.node_count(); ++k) points.push_back(grid.node_position(k));
   return points;
 }
 
