@@ -17,6 +17,7 @@
 #include <limits>
 #include <sstream>
 #include <string>
+#include <type_traits>
 #include <utility>
 #include <vector>
 
@@ -428,7 +429,7 @@ class Simulation {
     // pack_width particles at a time, then the rest one by one.
     constexpr int W = pack_width;
     const Index packs = count / W;
-    COSMPM_OMP_PARALLEL_FOR(threads_, count, 128)
+    COSMPM_OMP_PARALLEL_FOR_MIN(threads_, count, 128, first_outside, first_bad, first_moved)
     for (Index b = 0; b < packs; ++b) {
       map_from_grid<W, with_stress_update, pure_flip>(b * W, pass, first_outside, first_bad,
                                                       first_moved);
@@ -502,8 +503,8 @@ class Simulation {
       }
       if constexpr (with_stress_update) {
         const rates_type rates = rates_from<W>(grid_values, l);
-        particles_.template get<particles::field::VelocityGradient<Dim>>()[q] =
-            rates.velocity_gradient;
+        store_components(particles_.template get<particles::field::VelocityGradient<Dim>>()[q],
+                         rates.velocity_gradient);
         const bool finite = update_constitutive(q, rates, dt);
         if (!(finite && lane<W>(volume_ratio, l) > 0.0)) [[unlikely]]
           record_first(first_bad, q);
@@ -595,13 +596,16 @@ class Simulation {
     return rates;
   }
 
-  // Keeps the lowest index, so messages do not depend on the thread count.
-  static void record_first(Index& first, Index p) {
-#if defined(_OPENMP)
-#pragma omp critical(cosmpm_record_first)
-#endif
-    first = std::min(first, p);
+  // to = from, component by component: Eigen's packet stores are may-alias vector types,
+  // after which the compiler reloads every array pointer in the loop.
+  template <class Matrix>
+  COSMPM_ALWAYS_INLINE static void store_components(Matrix& to, const Matrix& from) {
+    for (Index i = 0; i < Matrix::SizeAtCompileTime; ++i) to.data()[i] = from.data()[i];
   }
+
+  // Keeps the lowest index, so messages do not depend on the thread count. `first` is the
+  // thread's own copy (COSMPM_OMP_PARALLEL_FOR_MIN combines the copies).
+  static void record_first(Index& first, Index p) { first = std::min(first, p); }
 
   // Constitutive update, deformation gradient and volume of one particle; false when the
   // result is not physical (inverted volume or non-finite stress).
@@ -724,7 +728,7 @@ class Simulation {
             "Simulation::update_stress: call velocity_gradient_from_grid first");
     const Index count = particles_.size();
     Index first_bad = count;
-    COSMPM_OMP_PARALLEL_FOR(threads_, count, 256)
+    COSMPM_OMP_PARALLEL_FOR_MIN(threads_, count, 256, first_bad)
     for (Index p = 0; p < count; ++p) {
       if (!update_particle_stress(p, particle_rates_[p], dt)) record_first(first_bad, p);
     }
@@ -732,46 +736,20 @@ class Simulation {
   }
 
   // --- access -----------------------------------------------------------------------------
-  store_type& particles() {
-    return particles_;
-  }
-  const store_type& particles() const {
-    return particles_;
-  }
-  const NodeFields& nodes() const {
-    return nodes_;
-  }
-  const grid::Grid<Dim>& grid() const {
-    return grid_;
-  }
-  grid::BoundaryConditions<Dim>& boundary_conditions() {
-    return boundary_;
-  }
-  const grid::BoundaryConditions<Dim>& boundary_conditions() const {
-    return boundary_;
-  }
+  store_type& particles() { return particles_; }
+  const store_type& particles() const { return particles_; }
+  const NodeFields& nodes() const { return nodes_; }
+  const grid::Grid<Dim>& grid() const { return grid_; }
+  grid::BoundaryConditions<Dim>& boundary_conditions() { return boundary_; }
+  const grid::BoundaryConditions<Dim>& boundary_conditions() const { return boundary_; }
   // The contact law: rigid-body positions, forces and traction records of the last step.
-  Contact& contact() {
-    return contact_;
-  }
-  const Contact& contact() const {
-    return contact_;
-  }
-  const model_type& model() const {
-    return model_;
-  }
-  const SimulationParameters<Dim>& parameters() const {
-    return parameters_;
-  }
-  double time() const {
-    return time_;
-  }
-  std::int64_t step_count() const {
-    return step_count_;
-  }
-  int threads() const {
-    return threads_;
-  }
+  Contact& contact() { return contact_; }
+  const Contact& contact() const { return contact_; }
+  const model_type& model() const { return model_; }
+  const SimulationParameters<Dim>& parameters() const { return parameters_; }
+  double time() const { return time_; }
+  std::int64_t step_count() const { return step_count_; }
+  int threads() const { return threads_; }
   // Local damping can change between phases (e.g. damped settling, then undamped cutting).
   void set_damping(double damping) {
     require_in_range("Simulation::set_damping", "damping", damping, 0.0, 1.0, Bounds::left_closed);
@@ -924,52 +902,55 @@ class Simulation {
     const Index nodes = grid_.node_count();
     scatter_.resize(static_cast<std::size_t>(ScatterRecord::all * nodes));
     std::fill(scatter_.begin(), scatter_.begin() + C * nodes, 0.0);
-    const auto& x = particles_.template get<particles::field::Position<Dim>>();
-    const auto& v = particles_.template get<particles::field::Velocity<Dim>>();
-    const auto& mass = particles_.template get<particles::field::Mass>();
-    const auto& vol = particles_.template get<particles::field::Volume>();
-    const auto& half = particles_.template get<particles::field::HalfWidth<Dim>>();
-    const auto& stress = particles_.template get<particles::field::Stress<model_type>>();
+    // Array addresses, captured by value below: the loop runs short of registers, and a
+    // pointer in the closure is one load where a captured vector is two.
+    const auto* const x = particles_.template get<particles::field::Position<Dim>>().data();
+    const auto* const v = particles_.template get<particles::field::Velocity<Dim>>().data();
+    const double* const mass = particles_.template get<particles::field::Mass>().data();
+    const double* const vol = particles_.template get<particles::field::Volume>().data();
+    const auto* const half = particles_.template get<particles::field::HalfWidth<Dim>>().data();
+    const auto* const stress =
+        particles_.template get<particles::field::Stress<model_type>>().data();
     const Index* const particle_block = particle_block_.data();
     const Vec<Dim> gravity = parameters_.gravity;
     const Index count = particles_.size();
-    Index first_misplaced = count;
-    Index first_invalid = count;
     const shape::StencilGrid<Dim> stencil_grid(grid_);
     stencil_cells_.resize(count);
     Vec<Dim>* const stencil_cells = stencil_cells_.data();
+    double* const records = scatter_.data();
     // Named outside the lambda: GCC 12 fails on C - W inside it.
     using Weighted = std::array<double, C>;
     using ByGradient = std::array<std::array<double, Dim>, C - W>;
-    // Inlined into the block loop: the array addresses stay in registers across particles.
-    for_each_particle_coloured([&](Index p) COSMPM_INLINE_LAMBDA {
-      stencil_type s;
-      if (!s.try_compute(stencil_grid, x[p], half[p])) [[unlikely]] {
-        record_first(first_invalid, p);  // reported after the (possibly parallel) loop
-        return;
-      }
-      if (block_of_cell(s.cell) != particle_block[p]) [[unlikely]] {
-        record_first(first_misplaced, p);
-        return;
-      }
-      stencil_cells[p] = s.position_in_cells;
-      const double mp = mass[p];
-      Weighted weighted;
-      ByGradient by_gradient;
-      weighted[ScatterRecord::mass] = mp;
-      for (int d = 0; d < Dim; ++d) weighted[ScatterRecord::momentum + d] = mp * v[p][d];
-      if constexpr (is_cosserat) {
-        const double inertia = mp * particles_.template get<particles::field::MicroInertia>()[p];
-        weighted[ScatterRecord::inertia] = inertia;
-        weighted[ScatterRecord::spin_momentum] =
-            inertia * particles_.template get<particles::field::MicroSpin>()[p];
-      }
-      if constexpr (with_forces) {
-        force_contribution(mp, vol[p], stress[p], gravity, weighted.data() + ScatterRecord::force,
-                           by_gradient);
-      }
-      shape::scatter<W>(s, scatter_.data(), weighted, by_gradient);
-    });
+    // Inlined into the block loop.
+    const auto [first_invalid, first_misplaced] =
+        for_each_particle_coloured([&, x, v, mass, vol, half, stress, particle_block, stencil_cells,
+                                    records](Index p) COSMPM_INLINE_LAMBDA {
+          stencil_type s;
+          // Reported after the (possibly parallel) loop.
+          if (!s.try_compute(stencil_grid, x[p], half[p])) [[unlikely]]
+            return Visit::invalid_stencil;
+          if (block_of_cell(s.cell) != particle_block[p]) [[unlikely]]
+            return Visit::misplaced;
+          store_components(stencil_cells[p], s.position_in_cells);
+          const double mp = mass[p];
+          Weighted weighted;
+          ByGradient by_gradient;
+          weighted[ScatterRecord::mass] = mp;
+          for (int d = 0; d < Dim; ++d) weighted[ScatterRecord::momentum + d] = mp * v[p][d];
+          if constexpr (is_cosserat) {
+            const double inertia =
+                mp * particles_.template get<particles::field::MicroInertia>()[p];
+            weighted[ScatterRecord::inertia] = inertia;
+            weighted[ScatterRecord::spin_momentum] =
+                inertia * particles_.template get<particles::field::MicroSpin>()[p];
+          }
+          if constexpr (with_forces) {
+            force_contribution(mp, vol[p], stress[p], gravity,
+                               weighted.data() + ScatterRecord::force, by_gradient);
+          }
+          shape::scatter<W>(s, records, weighted, by_gradient);
+          return Visit::done;
+        });
     if (first_invalid < count) {
       stencil_type s;
       s.compute(stencil_grid, x[first_invalid], half[first_invalid]);  // throws, naming it
@@ -1051,22 +1032,41 @@ class Simulation {
     blocks_changed_ = false;
   }
 
+  // What a particle visit of for_each_particle_coloured reports.
+  enum class Visit { done, invalid_stencil, misplaced };
+
   // Runs f(p) over all particles; blocks of one colour run in parallel, colours in order,
   // particles within a block in index order: the sum at every node is taken in the same
-  // order whatever the thread count.
+  // order whatever the thread count. Returns the first particle whose visit reported an
+  // invalid stencil and the first misplaced one (the particle count for none); f may also
+  // return nothing.
   template <class F>
-  void for_each_particle_coloured(F&& f) {
+  std::array<Index, 2> for_each_particle_coloured(F&& f) {
     const Index* start = block_start_.data();
     const Index* order = order_.data();
+    Index first_invalid = particles_.size();
+    Index first_misplaced = particles_.size();
     for (const auto& blocks : colour_blocks_) {
       const Index block_count = static_cast<Index>(blocks.size());
       const Index* block_list = blocks.data();
-      COSMPM_OMP_PARALLEL_FOR(threads_, particles_.size(), 1)
+      COSMPM_OMP_PARALLEL_FOR_MIN(threads_, particles_.size(), 1, first_invalid, first_misplaced)
       for (Index b = 0; b < block_count; ++b) {
         const Index block = block_list[b];
-        for (Index i = start[block]; i < start[block + 1]; ++i) f(order[i]);
+        for (Index i = start[block]; i < start[block + 1]; ++i) {
+          const Index p = order[i];
+          if constexpr (std::is_void_v<std::invoke_result_t<F&, Index>>) {
+            f(p);
+          } else {
+            const Visit visit = f(p);
+            if (visit == Visit::invalid_stencil) [[unlikely]]
+              record_first(first_invalid, p);
+            if (visit == Visit::misplaced) [[unlikely]]
+              record_first(first_misplaced, p);
+          }
+        }
       }
     }
+    return {first_invalid, first_misplaced};
   }
 
   int block_colour(Index block) const {

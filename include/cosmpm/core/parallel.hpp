@@ -13,8 +13,16 @@
 #define COSMPM_OMP_PARALLEL_FOR(threads, work, chunk)                                        \
   COSMPM_PRAGMA(omp parallel for schedule(dynamic, chunk) num_threads(threads) if ((work) >= \
                                                                                cosmpm::parallel_threshold))
+// The same loop with thread-private copies of the listed Index variables, combined by min at
+// the end: each thread records the first particle that failed a check in a register, with
+// no lock and no call inside the loop (a call there makes the compiler reload every array
+// pointer per particle).
+#define COSMPM_OMP_PARALLEL_FOR_MIN(threads, work, chunk, ...)                               \
+  COSMPM_PRAGMA(omp parallel for schedule(dynamic, chunk) num_threads(threads) if ((work) >= \
+                                                                               cosmpm::parallel_threshold) reduction(min : __VA_ARGS__))
 #else
 #define COSMPM_OMP_PARALLEL_FOR(threads, work, chunk)
+#define COSMPM_OMP_PARALLEL_FOR_MIN(threads, work, chunk, ...)
 #endif
 
 namespace cosmpm {

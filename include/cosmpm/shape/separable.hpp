@@ -68,6 +68,10 @@ struct StencilGrid {
   std::array<double, Dim> upper;  // last, with slack for round-off on the far face
   std::array<Index, Dim> nodes;
   std::array<Index, Dim> stride;  // node index strides, stride[0] = 1
+  // upper, or -1 (no position valid) along an axis with fewer nodes than a kernel of that
+  // support needs: a kernel's whole check is then two comparisons per axis.
+  static constexpr int tabled_support = 4;
+  std::array<std::array<double, Dim>, tabled_support + 1> upper_for_support;
 
   explicit StencilGrid(const grid::Grid<Dim>& grid) {
     Index next_stride = 1;
@@ -79,6 +83,8 @@ struct StencilGrid {
       upper[d] = last[d] * (1.0 + detail::position_round_off);
       stride[d] = next_stride;
       next_stride *= nodes[d];
+      for (int support = 0; support <= tabled_support; ++support)
+        upper_for_support[support][d] = nodes[d] >= support ? upper[d] : -1.0;
     }
   }
 
@@ -87,7 +93,12 @@ struct StencilGrid {
   // half-width in its range. NaN is never valid.
   template <Kernel K>
   bool valid(int d, double xi, double half_width) const {
-    bool ok = xi >= 0.0 && xi <= upper[d] && nodes[d] >= K::support;
+    bool ok;
+    if constexpr (K::support <= tabled_support) {
+      ok = xi >= 0.0 && xi <= upper_for_support[K::support][d];
+    } else {
+      ok = xi >= 0.0 && xi <= upper[d] && nodes[d] >= K::support;
+    }
     if constexpr (UsesHalfWidth<K>) {
       ok = ok && half_width > K::min_half_width && half_width <= K::max_half_width;
     }
