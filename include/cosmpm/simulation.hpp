@@ -490,10 +490,12 @@ class Simulation {
       }
     }
     [[maybe_unused]] P volume_ratio;
+    [[maybe_unused]] std::array<std::array<P, Dim>, Dim> L;
+    [[maybe_unused]] P stress_sum;  // the packed stress update's finiteness check
     if constexpr (with_stress_update) {
-      std::array<std::array<P, Dim>, Dim> L;
       for (int i = 0; i < Dim; ++i) L[i] = grid_values.gradient[GatherRecord::velocity + i];
       volume_ratio = update_deformation<W>(p, L, dt);
+      if constexpr (packed_stress_update<W>) stress_sum = update_stress_packed<W>(p, L, dt);
     }
     for (int l = 0; l < W; ++l) {
       const Index q = p + l;
@@ -502,10 +504,19 @@ class Simulation {
                                  lane<W>(grid_values.value[GatherRecord::spin_acceleration], l));
       }
       if constexpr (with_stress_update) {
-        const rates_type rates = rates_from<W>(grid_values, l);
-        store_components(particles_.template get<particles::field::VelocityGradient<Dim>>()[q],
-                         rates.velocity_gradient);
-        const bool finite = update_constitutive(q, rates, dt);
+        auto& velocity_gradient =
+            particles_.template get<particles::field::VelocityGradient<Dim>>()[q];
+        bool finite;
+        if constexpr (packed_stress_update<W>) {
+          for (int i = 0; i < Dim; ++i) {
+            for (int j = 0; j < Dim; ++j) velocity_gradient(i, j) = lane<W>(L[i][j], l);
+          }
+          finite = std::isfinite(lane<W>(stress_sum, l));
+        } else {
+          const rates_type rates = rates_from<W>(grid_values, l);
+          store_components(velocity_gradient, rates.velocity_gradient);
+          finite = update_constitutive(q, rates, dt);
+        }
         if (!(finite && lane<W>(volume_ratio, l) > 0.0)) [[unlikely]]
           record_first(first_bad, q);
       }
@@ -525,6 +536,40 @@ class Simulation {
         record_first(first_moved, q);
       }
     }
+  }
+
+  // Whether the stress update of the grid-to-particle loop runs on packs of W particles: for
+  // models that update packs of components (Continuum::updates_values, e.g. LinearElastic).
+  template <int W>
+  static constexpr bool packed_stress_update = [] {
+    if constexpr (is_cosserat || Dim != 2) {
+      return false;
+    } else {
+      return Continuum::template updates_values<Pack<W>>;
+    }
+  }();
+
+  // The stress update of particles p, ..., p + W - 1 on packs, with their velocity gradient L;
+  // returns the sum of each new stress's components (non-finite when one is).
+  template <int W>
+  COSMPM_ALWAYS_INLINE Pack<W> update_stress_packed(
+      Index p, const std::array<std::array<Pack<W>, Dim>, Dim>& L, double dt) {
+    using P = Pack<W>;
+    auto& stress = particles_.template get<particles::field::Stress<model_type>>();
+    auto& strain = particles_.template get<particles::field::Strain<model_type>>();
+    static constexpr std::array<int, 3> strain_components{0, 1, 3};  // zz stays (plane strain)
+    std::array<P, 4> s;
+    std::array<P, 3> e;
+    for (int c = 0; c < 4; ++c) s[c] = make_pack<W>([&](int l) { return stress[p + l][c]; });
+    for (int k = 0; k < 3; ++k) {
+      e[k] = make_pack<W>([&](int l) { return strain[p + l][strain_components[k]]; });
+    }
+    Continuum::update_stress_values(model_, L, dt, s, e);
+    for (int l = 0; l < W; ++l) {
+      for (int c = 0; c < 4; ++c) stress[p + l][c] = lane<W>(s[c], l);
+      for (int k = 0; k < 3; ++k) strain[p + l][strain_components[k]] = lane<W>(e[k], l);
+    }
+    return (s[0] + s[1]) + (s[2] + s[3]);
   }
 
   // F <- (I + dt L) F and V = det(F) V0 for particles p, ..., p + W - 1; returns det(F).

@@ -32,13 +32,7 @@ requires(!Model::is_cosserat) struct Classical {
                             typename Model::stress_type& stress, typename Model::state_type& state,
                             typename Model::strain_type& accumulated_strain) {
     const Mat<2>& velocity_gradient = rates.velocity_gradient;
-    const double spin = 0.5 * (velocity_gradient(0, 1) - velocity_gradient(1, 0)) * dt;
-    const double sxx = stress[0];
-    const double syy = stress[1];
-    const double sxy = stress[3];
-    stress[0] = sxx + 2.0 * spin * sxy;
-    stress[1] = syy - 2.0 * spin * sxy;
-    stress[3] = sxy + spin * (syy - sxx);
+    rotate_by_spin(0.5 * (velocity_gradient(0, 1) - velocity_gradient(1, 0)) * dt, stress);
     typename Model::strain_type increment;
     increment[0] = velocity_gradient(0, 0) * dt;
     increment[1] = velocity_gradient(1, 1) * dt;
@@ -49,6 +43,44 @@ requires(!Model::is_cosserat) struct Classical {
     accumulated_strain[0] += increment[0];
     accumulated_strain[1] += increment[1];
     accumulated_strain[3] += increment[3];
+  }
+
+  // Whether the model updates several points at once on packs of their components
+  // (update_values, for models without state such as LinearElastic): the engine's
+  // grid-to-particle loop then runs the whole stress update side by side for W particles.
+  template <class Value>
+  static constexpr bool updates_values = requires(const Model& model, std::array<Value, 4>& stress,
+                                                  const std::array<Value, 4>& de) {
+    model.update_values(stress, de);
+  };
+
+  // update_stress for W particles at once: lane l of every value belongs to particle l, L the
+  // velocity gradient, `strain` the accumulated [e_xx, e_yy, e_xy].
+  template <class Value>
+  requires updates_values<Value>
+  static void update_stress_values(const Model& model, const std::array<std::array<Value, 2>, 2>& L,
+                                   double dt, std::array<Value, 4>& stress,
+                                   std::array<Value, 3>& strain) {
+    // The same operations, in the same order, as update_stress: the same results.
+    rotate_by_spin(0.5 * (L[0][1] - L[1][0]) * dt, stress);
+    const std::array<Value, 4> increment{L[0][0] * dt, L[1][1] * dt, Value{},
+                                         0.5 * (L[0][1] + L[1][0]) * dt};
+    model.update_values(stress, increment);
+    strain[0] += increment[0];
+    strain[1] += increment[1];
+    strain[2] += increment[3];
+  }
+
+  // The Jaumann rotation of the stress by the spin angle of a step, in place (an Eigen vector,
+  // or an array of packs).
+  template <class Value, class Stress>
+  static void rotate_by_spin(Value spin, Stress& stress) {
+    const Value sxx = stress[0];
+    const Value syy = stress[1];
+    const Value sxy = stress[3];
+    stress[0] = sxx + 2.0 * spin * sxy;
+    stress[1] = syy - 2.0 * spin * sxy;
+    stress[3] = sxy + spin * (syy - sxx);
   }
 
   // A particle's nodal internal force -V sigma . grad N, written as sum_i dN/dx_i b[j][i] for

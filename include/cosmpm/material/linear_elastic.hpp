@@ -31,9 +31,16 @@ class LinearElastic {
   T p_wave_modulus() const { return lambda_ + 2 * shear_; }
 
   void update(stress_type& stress, state_type& /*state*/, const strain_type& de) const {
-    // Component by component: callers that just wrote single components of the stress (the
-    // engine's Jaumann rotation) would stall reading them back as whole vectors.
-    const T volumetric = lambda_ * (de[0] + de[1] + de[2]);
+    update_values(stress, de);
+  }
+
+  // stress += D de, component by component, on an Eigen vector or on an array of packs that
+  // hold one component of several points each (the engine updates W particles at once so).
+  // Component by component also because callers that just wrote single components of the
+  // stress (the engine's Jaumann rotation) would stall reading them back as whole vectors.
+  template <class Stress, class Increment>
+  void update_values(Stress& stress, const Increment& de) const {
+    const auto volumetric = lambda_ * (de[0] + de[1] + de[2]);
     const T two_shear = 2 * shear_;
     stress[0] += volumetric + two_shear * de[0];
     stress[1] += volumetric + two_shear * de[1];
