@@ -497,6 +497,18 @@ class Simulation {
       volume_ratio = update_deformation<W>(p, L, dt);
       if constexpr (packed_stress_update<W>) stress_sum = update_stress_packed<W>(p, L, dt);
     }
+    // The packed update checks all lanes with one comparison: s * 0 is 0 for a finite s and
+    // NaN otherwise, so s * 0 + J > 0 holds exactly when s is finite and J > 0.
+    [[maybe_unused]] bool pack_sound = true;
+    if constexpr (with_stress_update && packed_stress_update<W>) {
+      pack_sound = all_lanes<W>(stress_sum * 0.0 + volume_ratio > 0.0);
+    }
+    // 0 < xi < last exactly when xi (last - xi) > 0 (false for NaN): one comparison per axis
+    // for the whole pack.
+    bool all_inside = true;
+    for (int d = 0; d < Dim; ++d) {
+      all_inside &= all_lanes<W>(xi[d] * (pass.stencil_grid.last[d] - xi[d]) > 0.0);
+    }
     for (int l = 0; l < W; ++l) {
       const Index q = p + l;
       if constexpr (is_cosserat) {
@@ -506,32 +518,36 @@ class Simulation {
       if constexpr (with_stress_update) {
         auto& velocity_gradient =
             particles_.template get<particles::field::VelocityGradient<Dim>>()[q];
-        bool finite;
         if constexpr (packed_stress_update<W>) {
           for (int i = 0; i < Dim; ++i) {
             for (int j = 0; j < Dim; ++j) velocity_gradient(i, j) = lane<W>(L[i][j], l);
           }
-          finite = std::isfinite(lane<W>(stress_sum, l));
+          if (!pack_sound && !(std::isfinite(lane<W>(stress_sum, l)) &&
+                               lane<W>(volume_ratio, l) > 0.0)) [[unlikely]]
+            record_first(first_bad, q);
         } else {
           const rates_type rates = rates_from<W>(grid_values, l);
           store_components(velocity_gradient, rates.velocity_gradient);
-          finite = update_constitutive(q, rates, dt);
+          const bool finite = update_constitutive(q, rates, dt);
+          if (!(finite && lane<W>(volume_ratio, l) > 0.0)) [[unlikely]]
+            record_first(first_bad, q);
         }
-        if (!(finite && lane<W>(volume_ratio, l) > 0.0)) [[unlikely]]
-          record_first(first_bad, q);
       }
-      bool inside = true;
-      std::array<Index, Dim> cell;
-      for (int d = 0; d < Dim; ++d) {
-        const double xi_lane = lane<W>(xi[d], l);
-        inside = inside && pass.stencil_grid.inside(d, xi_lane);
-        // Inside, xi < cells, so the floor is already what cell_of gives (its clamp to the last
-        // cell cost 13 instructions per particle here, from reloading the node counts).
-        cell[d] = inside ? static_cast<Index>(xi_lane) : 0;
+      bool inside = all_inside;
+      if (!all_inside) [[unlikely]] {
+        for (int d = 0; d < Dim; ++d) {
+          inside = inside && pass.stencil_grid.inside(d, lane<W>(xi[d], l));
+        }
       }
       if (!inside) [[unlikely]] {
         record_first(first_outside, q);
-      } else if (const Index block = block_of_cell(cell); block != particle_block_[q]) {
+        continue;
+      }
+      // Inside, xi < cells, so the floor is already what cell_of gives (its clamp to the last
+      // cell cost 13 instructions per particle here, from reloading the node counts).
+      std::array<Index, Dim> cell;
+      for (int d = 0; d < Dim; ++d) cell[d] = static_cast<Index>(lane<W>(xi[d], l));
+      if (const Index block = block_of_cell(cell); block != particle_block_[q]) {
         particle_block_[q] = block;  // sorted again at the next particle-to-grid map
         record_first(first_moved, q);
       }

@@ -13,6 +13,8 @@
 #include <cstddef>
 #include <utility>
 
+#include "cosmpm/core/compiler.hpp"
+
 namespace cosmpm {
 
 // COSMPM_PACK_WIDTH (1, 2 or 4) overrides the choice, e.g. to compare widths.
@@ -45,7 +47,23 @@ struct PackType<4> {
   using type = double __attribute__((vector_size(4 * sizeof(double))));
 };
 #endif
+template <int W>
+struct IntPackType;
+#if defined(__GNUC__) || defined(__clang__)
+template <>
+struct IntPackType<2> {
+  using type = int __attribute__((vector_size(2 * sizeof(int))));
+};
+template <>
+struct IntPackType<4> {
+  using type = int __attribute__((vector_size(4 * sizeof(int))));
+};
+#endif
 }  // namespace detail
+
+// W ints, for converting a Pack<W> lane by lane (__builtin_convertvector).
+template <int W>
+using IntPack = typename detail::IntPackType<W>::type;
 
 // Pack<1> is double, so code written for Pack<W> also serves the scalar remainder of a loop.
 template <int W>
@@ -72,6 +90,27 @@ inline Pack<W> make_pack(F&& value) {
       return Pack<W>{value(L)...};
     }
     (std::make_integer_sequence<int, W>{});
+  }
+}
+
+// Whether every lane of a comparison's result is true, with one branch for the whole pack
+// (SSE2 and AVX: the lanes' sign bits gathered by movmskpd).
+template <int W, class Mask>
+COSMPM_ALWAYS_INLINE bool all_lanes(const Mask& mask) {
+  if constexpr (W == 1) {
+    return static_cast<bool>(mask);
+#if defined(__SSE2__) && (defined(__GNUC__) || defined(__clang__))
+  } else if constexpr (W == 2) {
+    return __builtin_ia32_movmskpd(reinterpret_cast<const Pack<2>&>(mask)) == 0x3;
+#endif
+#if defined(__AVX__) && (defined(__GNUC__) || defined(__clang__))
+  } else if constexpr (W == 4) {
+    return __builtin_ia32_movmskpd256(reinterpret_cast<const Pack<4>&>(mask)) == 0xf;
+#endif
+  } else {
+    bool all = true;
+    for (int l = 0; l < W; ++l) all = all && mask[l] != 0;
+    return all;
   }
 }
 
