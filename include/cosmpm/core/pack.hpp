@@ -101,11 +101,11 @@ COSMPM_ALWAYS_INLINE bool all_lanes(const Mask& mask) {
     return static_cast<bool>(mask);
 #if defined(__SSE2__) && (defined(__GNUC__) || defined(__clang__))
   } else if constexpr (W == 2) {
-    return __builtin_ia32_movmskpd(reinterpret_cast<const Pack<2>&>(mask)) == 0x3;
+    return __builtin_ia32_movmskpd(__builtin_bit_cast(Pack<2>, mask)) == 0x3;
 #endif
 #if defined(__AVX__) && (defined(__GNUC__) || defined(__clang__))
   } else if constexpr (W == 4) {
-    return __builtin_ia32_movmskpd256(reinterpret_cast<const Pack<4>&>(mask)) == 0xf;
+    return __builtin_ia32_movmskpd256(__builtin_bit_cast(Pack<4>, mask)) == 0xf;
 #endif
   } else {
     bool all = true;
