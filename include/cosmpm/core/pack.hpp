@@ -31,43 +31,26 @@ inline constexpr int pack_width = 1;
 #endif
 
 namespace detail {
-template <int W>
-struct PackType;
-template <>
-struct PackType<1> {
-  using type = double;
-};
+// W lanes of T (GCC/Clang vector extensions); W = 1 is T itself.
+template <class T, int W>
+struct LaneType {
 #if defined(__GNUC__) || defined(__clang__)
-template <>
-struct PackType<2> {
-  using type = double __attribute__((vector_size(2 * sizeof(double))));
-};
-template <>
-struct PackType<4> {
-  using type = double __attribute__((vector_size(4 * sizeof(double))));
-};
+  typedef T type __attribute__((vector_size(W * sizeof(T))));
 #endif
-template <int W>
-struct IntPackType;
-#if defined(__GNUC__) || defined(__clang__)
-template <>
-struct IntPackType<2> {
-  using type = int __attribute__((vector_size(2 * sizeof(int))));
 };
-template <>
-struct IntPackType<4> {
-  using type = int __attribute__((vector_size(4 * sizeof(int))));
+template <class T>
+struct LaneType<T, 1> {
+  using type = T;
 };
-#endif
 }  // namespace detail
 
 // W ints, for converting a Pack<W> lane by lane (__builtin_convertvector).
 template <int W>
-using IntPack = typename detail::IntPackType<W>::type;
+using IntPack = typename detail::LaneType<int, W>::type;
 
 // Pack<1> is double, so code written for Pack<W> also serves the scalar remainder of a loop.
 template <int W>
-using Pack = typename detail::PackType<W>::type;
+using Pack = typename detail::LaneType<double, W>::type;
 
 template <int W>
 inline double lane(const Pack<W>& pack, int l) {
