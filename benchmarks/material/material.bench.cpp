@@ -7,6 +7,7 @@
 #include <benchmark/benchmark.h>
 
 #include <random>
+#include <string>
 #include <vector>
 
 #include "cosmpm/material.hpp"
@@ -161,12 +162,11 @@ void BM_CosseratElastic(benchmark::State& bench) {
 }
 
 // mixed: the Cosserat batch as it is; elastic / plastic: only its states whose trial is
-// elastic / plastic for the model, cycled to fill the batch.
-void BM_CosseratDruckerPrager(benchmark::State& bench) {
+// elastic / plastic for the model, cycled to fill the batch. The label gives the mix.
+CosseratBatch cosserat_drucker_prager_batch(const CosseratDruckerPrager<double>& model,
+                                            std::size_t index, std::string& label) {
   static const char* names[] = {"mixed", "elastic", "plastic"};
-  const auto index = static_cast<std::size_t>(bench.range(0));
   const auto all = cosserat_batch();
-  const CosseratDruckerPrager<double> model(kE, kNu, 2 * kG, 0.01, kPhi, kPsi);
   CosseratBatch batch;
   for (std::size_t i = 0; i < kCount; ++i) {
     auto s = all.old[i];
@@ -191,9 +191,38 @@ void BM_CosseratDruckerPrager(benchmark::State& bench) {
   }
   batch.work = batch.old;
   batch.state.assign(kCount, PlasticState{});
-  bench.SetLabel(std::string(names[index]) + ", plastic fraction " +
-                 std::to_string(double(plastic) / double(kCount)));
+  label = std::string(names[index]) + ", plastic fraction " +
+          std::to_string(double(plastic) / double(kCount));
+  return batch;
+}
+
+void BM_CosseratDruckerPrager(benchmark::State& bench) {
+  const CosseratDruckerPrager<double> model(kE, kNu, 2 * kG, 0.01, kPhi, kPsi);
+  std::string label;
+  auto batch =
+      cosserat_drucker_prager_batch(model, static_cast<std::size_t>(bench.range(0)), label);
+  bench.SetLabel(label);
   run(bench, model, batch);
+}
+
+// The same batches through update_batch: copy old -> work as `run` does, then one call.
+void BM_CosseratDruckerPrager_batch(benchmark::State& bench) {
+  const CosseratDruckerPrager<double> model(kE, kNu, 2 * kG, 0.01, kPhi, kPsi);
+  std::string label;
+  auto batch =
+      cosserat_drucker_prager_batch(model, static_cast<std::size_t>(bench.range(0)), label);
+  bench.SetLabel(label);
+  const auto* const old = batch.old.data();
+  auto* const work = batch.work.data();
+  for (auto _ : bench) {
+    for (std::size_t i = 0; i < kCount; ++i) work[i] = old[i];
+    model.update_batch(batch.work, batch.state, batch.increment);
+    benchmark::DoNotOptimize(work);
+    benchmark::ClobberMemory();
+  }
+  bench.counters["ns_per_call"] =
+      benchmark::Counter(double(bench.iterations()) * double(kCount),
+                         benchmark::Counter::kIsRate | benchmark::Counter::kInvert);
 }
 
 }  // namespace
@@ -203,3 +232,4 @@ BENCHMARK(BM_MohrCoulomb)->DenseRange(0, 5);
 BENCHMARK(BM_DruckerPrager);
 BENCHMARK(BM_CosseratElastic);
 BENCHMARK(BM_CosseratDruckerPrager)->DenseRange(0, 2);
+BENCHMARK(BM_CosseratDruckerPrager_batch)->DenseRange(0, 2);

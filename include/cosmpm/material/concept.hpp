@@ -6,8 +6,12 @@
 #include <array>
 #include <concepts>
 #include <cstddef>
+#include <span>
+#include <string>
 #include <string_view>
 #include <type_traits>
+
+#include "cosmpm/core/error.hpp"
 
 namespace cosmpm::material {
 
@@ -44,6 +48,35 @@ concept HasConsistentTangent = ConstitutiveModel<M> &&
   typename M::tangent_type;
   { model.update(stress, state, strain_increment, tangent) } -> std::same_as<void>;
 };
+
+// A model that also updates whole arrays of points in one call (faster than a loop over
+// update() when it has a batched return, e.g. CosseratDruckerPrager). Same results as
+// update() point by point, to rounding.
+template <class M>
+concept HasBatchUpdate = ConstitutiveModel<M> &&
+    requires(const M& model, std::span<typename M::stress_type> stress,
+             std::span<typename M::state_type> state,
+             std::span<const typename M::strain_type> increment) {
+  { model.update_batch(stress, state, increment) } -> std::same_as<void>;
+};
+
+// update(stress[i], state[i], increment[i]) for every i, by the model's update_batch when it
+// has one and otherwise by a loop over update(): one call for any model. The spans must have
+// the same size and must not overlap.
+template <ConstitutiveModel M>
+void update_batch(const M& model, std::span<typename M::stress_type> stress,
+                  std::span<typename M::state_type> state,
+                  std::span<const typename M::strain_type> increment) {
+  if constexpr (HasBatchUpdate<M>) {
+    model.update_batch(stress, state, increment);
+  } else {
+    if (stress.size() != state.size() || stress.size() != increment.size())
+      throw Error("material::update_batch: stress has " + std::to_string(stress.size()) +
+                  " points, state " + std::to_string(state.size()) + " and increment " +
+                  std::to_string(increment.size()) + "; the three sizes must be equal");
+    for (std::size_t i = 0; i < stress.size(); ++i) model.update(stress[i], state[i], increment[i]);
+  }
+}
 
 // State of a model without internal variables.
 struct NoState {

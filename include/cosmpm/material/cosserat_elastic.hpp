@@ -55,6 +55,22 @@ std::array<T, 7> trial_stress(const V& stress, const Eigen::Matrix<T, 7, 1>& de,
           stress[6] + m.bending * d6};
 }
 
+// The same for stress and increment given as seven values, each a T or (update_batch) lanes of
+// T. (Written out twice: the version above through this one costs the per-point update about 30
+// instructions of copies.)
+template <class V, class T>
+std::array<V, 7> trial_stress(const std::array<V, 7>& s, const std::array<V, 7>& d,
+                              const CosseratModuli<T>& m) {
+  const V volumetric = m.lambda * (d[0] + d[1] + d[2]);
+  return {s[0] + (volumetric + m.shear2 * d[0]),
+          s[1] + (volumetric + m.shear2 * d[1]),
+          s[2] + (volumetric + m.shear2 * d[2]),
+          s[3] + (m.plus * d[3] + m.minus * d[4]),
+          s[4] + (m.plus * d[4] + m.minus * d[3]),
+          s[5] + m.bending * d[5],
+          s[6] + m.bending * d[6]};
+}
+
 // The elastic part shared by the Cosserat models.
 template <class T>
 struct CosseratElasticity {
