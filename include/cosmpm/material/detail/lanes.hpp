@@ -43,6 +43,13 @@ inline constexpr std::size_t register_bytes = 32;
 #else
 inline constexpr std::size_t register_bytes = 16;
 #endif
+#else
+// No lanes: the models call their per-point update; these keep the batch code compiling.
+inline constexpr bool has_lanes = false;
+template <class T, int L>
+using Lanes = T;
+inline constexpr std::size_t register_bytes = sizeof(double);
+#endif
 
 // Lanes from memory and back (no alignment needed). Lanes go by reference: lanes wider than the
 // target's registers passed by value have an ABI that depends on the flags (GCC's -Wpsabi).
@@ -97,13 +104,13 @@ inline void sqrt_in_place(V& x) {
   if constexpr (std::is_floating_point_v<V>) {
     x = std::sqrt(x);
   } else {
-#if defined(__AVX__)
+#if (defined(__GNUC__) || defined(__clang__)) && defined(__AVX__)
     if constexpr (std::is_same_v<V, Lanes<double, 4>>) {
       x = _mm256_sqrt_pd(x);
       return;
     }
 #endif
-#if defined(__SSE2__)
+#if (defined(__GNUC__) || defined(__clang__)) && defined(__SSE2__)
     if constexpr (std::is_same_v<V, Lanes<double, 2>>) {
       x = _mm_sqrt_pd(x);
       return;
@@ -112,12 +119,5 @@ inline void sqrt_in_place(V& x) {
     for (int k = 0; k < lane_count<V>(); ++k) x[k] = std::sqrt(x[k]);
   }
 }
-#else
-inline constexpr bool has_lanes = false;
-template <class V>
-inline void sqrt_in_place(V& x) {
-  x = std::sqrt(x);
-}
-#endif
 
 }  // namespace cosmpm::material::detail
