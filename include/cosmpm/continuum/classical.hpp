@@ -31,6 +31,16 @@ requires(!Model::is_cosserat) struct Classical {
   static void update_stress(const Model& model, const rates_type<2>& rates, double dt,
                             typename Model::stress_type& stress, typename Model::state_type& state,
                             typename Model::strain_type& accumulated_strain) {
+    const typename Model::strain_type increment = rotate_and_increment(rates, dt, stress);
+    model.update(stress, state, increment);
+    accumulate_strain(accumulated_strain, increment);
+  }
+
+  // update_stress in parts, for callers that hand the model many points in one call
+  // (material::update_batch): the rotation of the stress by the spin, returning the strain
+  // increment the model then integrates, and the strain's accumulation.
+  static typename Model::strain_type rotate_and_increment(const rates_type<2>& rates, double dt,
+                                                          typename Model::stress_type& stress) {
     const Mat<2>& velocity_gradient = rates.velocity_gradient;
     rotate_by_spin(0.5 * (velocity_gradient(0, 1) - velocity_gradient(1, 0)) * dt, stress);
     typename Model::strain_type increment;
@@ -38,7 +48,10 @@ requires(!Model::is_cosserat) struct Classical {
     increment[1] = velocity_gradient(1, 1) * dt;
     increment[2] = 0.0;
     increment[3] = 0.5 * (velocity_gradient(0, 1) + velocity_gradient(1, 0)) * dt;
-    model.update(stress, state, increment);
+    return increment;
+  }
+  static void accumulate_strain(typename Model::strain_type& accumulated_strain,
+                                const typename Model::strain_type& increment) {
     // Plane strain: the zz increment is zero, so the zz strain stays as it is.
     accumulated_strain[0] += increment[0];
     accumulated_strain[1] += increment[1];

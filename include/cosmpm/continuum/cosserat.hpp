@@ -38,6 +38,16 @@ requires(Model::is_cosserat) struct Cosserat {
   static void update_stress(const Model& model, const rates_type<2>& rates, double dt,
                             typename Model::stress_type& stress, typename Model::state_type& state,
                             typename Model::strain_type& accumulated_strain) {
+    const typename Model::strain_type increment = rotate_and_increment(rates, dt, stress);
+    model.update(stress, state, increment);
+    accumulate_strain(accumulated_strain, increment);
+  }
+
+  // update_stress in parts, for callers that hand the model many points in one call
+  // (material::update_batch): the rotation, returning the deformation increment the model
+  // then integrates, and the strain's accumulation.
+  static typename Model::strain_type rotate_and_increment(const rates_type<2>& rates, double dt,
+                                                          typename Model::stress_type& stress) {
     const Mat<2>& L = rates.velocity_gradient;
     const double w = 0.5 * (L(0, 1) - L(1, 0)) * dt;
     const double sxx = stress[0], syy = stress[1], sxy = stress[3], syx = stress[4];
@@ -58,7 +68,10 @@ requires(Model::is_cosserat) struct Cosserat {
     increment[4] = (L(0, 1) + rates.spin) * dt;  // du_x/dy + omega_3
     increment[5] = rates.spin_gradient[0] * dt;
     increment[6] = rates.spin_gradient[1] * dt;
-    model.update(stress, state, increment);
+    return increment;
+  }
+  static void accumulate_strain(typename Model::strain_type& accumulated_strain,
+                                const typename Model::strain_type& increment) {
     accumulated_strain += increment;
   }
 
