@@ -68,7 +68,8 @@ ClassicalBatch classical_batch(Mix mix) {
   return batch;
 }
 
-template <class Model, class Batch>
+// batched: the copies first, then one model.update_batch call over the whole batch.
+template <bool batched = false, class Model, class Batch>
 void run(benchmark::State& bench, const Model& model, Batch& batch) {
   // The array pointers are read once: the loop's stores would otherwise make the compiler
   // reload them through the batch for every point.
@@ -77,9 +78,14 @@ void run(benchmark::State& bench, const Model& model, Batch& batch) {
   auto* const state = batch.state.data();
   const auto* const increment = batch.increment.data();
   for (auto _ : bench) {
-    for (std::size_t i = 0; i < kCount; ++i) {
-      work[i] = old[i];
-      model.update(work[i], state[i], increment[i]);
+    if constexpr (batched) {
+      for (std::size_t i = 0; i < kCount; ++i) work[i] = old[i];
+      model.update_batch(batch.work, batch.state, batch.increment);
+    } else {
+      for (std::size_t i = 0; i < kCount; ++i) {
+        work[i] = old[i];
+        model.update(work[i], state[i], increment[i]);
+      }
     }
     benchmark::DoNotOptimize(work);
     benchmark::ClobberMemory();
@@ -196,33 +202,22 @@ CosseratBatch cosserat_drucker_prager_batch(const CosseratDruckerPrager<double>&
   return batch;
 }
 
-void BM_CosseratDruckerPrager(benchmark::State& bench) {
+// Per point through update(), or (batched) through update_batch.
+template <bool batched>
+void cosserat_drucker_prager(benchmark::State& bench) {
   const CosseratDruckerPrager<double> model(kE, kNu, 2 * kG, 0.01, kPhi, kPsi);
   std::string label;
   auto batch =
       cosserat_drucker_prager_batch(model, static_cast<std::size_t>(bench.range(0)), label);
   bench.SetLabel(label);
-  run(bench, model, batch);
+  run<batched>(bench, model, batch);
 }
 
-// The same batches through update_batch: copy old -> work as `run` does, then one call.
+void BM_CosseratDruckerPrager(benchmark::State& bench) {
+  cosserat_drucker_prager<false>(bench);
+}
 void BM_CosseratDruckerPrager_batch(benchmark::State& bench) {
-  const CosseratDruckerPrager<double> model(kE, kNu, 2 * kG, 0.01, kPhi, kPsi);
-  std::string label;
-  auto batch =
-      cosserat_drucker_prager_batch(model, static_cast<std::size_t>(bench.range(0)), label);
-  bench.SetLabel(label);
-  const auto* const old = batch.old.data();
-  auto* const work = batch.work.data();
-  for (auto _ : bench) {
-    for (std::size_t i = 0; i < kCount; ++i) work[i] = old[i];
-    model.update_batch(batch.work, batch.state, batch.increment);
-    benchmark::DoNotOptimize(work);
-    benchmark::ClobberMemory();
-  }
-  bench.counters["ns_per_call"] =
-      benchmark::Counter(double(bench.iterations()) * double(kCount),
-                         benchmark::Counter::kIsRate | benchmark::Counter::kInvert);
+  cosserat_drucker_prager<true>(bench);
 }
 
 }  // namespace
