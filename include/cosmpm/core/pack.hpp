@@ -31,7 +31,8 @@ inline constexpr int pack_width = 1;
 #endif
 
 namespace detail {
-// W lanes of T (GCC/Clang vector extensions); W = 1 is T itself.
+// W lanes of T (GCC/Clang vector extensions; a typedef, as GCC ignores the attribute on an
+// alias of a dependent type); W = 1 is T itself.
 template <class T, int W>
 struct LaneType {
 #if defined(__GNUC__) || defined(__clang__)

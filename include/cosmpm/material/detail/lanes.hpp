@@ -23,19 +23,16 @@
 #include <immintrin.h>
 #endif
 
+#include "cosmpm/core/pack.hpp"
+
 namespace cosmpm::material::detail {
 
 #if defined(__GNUC__) || defined(__clang__)
 inline constexpr bool has_lanes = true;
 
+// L lanes of T (L a power of two, at least 2): the engine's packs (core/pack.hpp).
 template <class T, int L>
-struct LanesType {
-  // A typedef: GCC ignores the attribute on an alias of a dependent type.
-  typedef T type __attribute__((vector_size(L * sizeof(T))));  // NOLINT(modernize-use-using)
-};
-// L lanes of T (L a power of two, at least 2).
-template <class T, int L>
-using Lanes = typename LanesType<T, L>::type;
+using Lanes = typename cosmpm::detail::LaneType<T, L>::type;
 
 // The width of the target's vector registers in bytes.
 #if defined(__AVX__)
