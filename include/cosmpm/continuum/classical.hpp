@@ -87,7 +87,7 @@ requires(!Model::is_cosserat) struct Classical {
   // The Jaumann rotation of the stress by the spin angle of a step, in place (an Eigen vector,
   // or an array of packs).
   template <class Value, class Stress>
-  static void rotate_by_spin(Value spin, Stress& stress) {
+  static void rotate_by_spin(const Value& spin, Stress& stress) {
     const Value sxx = stress[0];
     const Value syy = stress[1];
     const Value sxy = stress[3];
