@@ -454,7 +454,8 @@ class Simulation {
   };
 
   // Grid to particles p, ..., p + W - 1: stencils, node sums, velocity, position and
-  // deformation run side by side in packs; the constitutive update is per particle.
+  // deformation run side by side in packs; the constitutive update too for models that update
+  // packs (packed_stress_update), per particle for the others.
   template <int W, bool with_stress_update, bool pure_flip>
   COSMPM_ALWAYS_INLINE void map_from_grid(Index p, const ParticleMapPass& pass,
                                           Index& first_outside, Index& first_bad,

@@ -11,6 +11,7 @@
 // plain double, and the same code runs one particle at a time.
 #include <array>
 #include <cstddef>
+#include <type_traits>
 #include <utility>
 
 #include "cosmpm/core/compiler.hpp"
@@ -53,28 +54,55 @@ using IntPack = typename detail::LaneType<int, W>::type;
 template <int W>
 using Pack = typename detail::LaneType<double, W>::type;
 
-template <int W>
-inline double lane(const Pack<W>& pack, int l) {
-  if constexpr (W == 1) {
-    (void)l;
-    return pack;
+// The helpers below take any lane type (a vector of doubles or of floats) or a plain number,
+// its own single lane.
+
+// The number of lanes of V.
+template <class V>
+constexpr int lane_count() {
+  if constexpr (std::is_arithmetic_v<V>) {
+    return 1;
   } else {
-    return pack[l];
+    return static_cast<int>(sizeof(V) / sizeof(std::declval<V&>()[0]));
   }
 }
 
-// Lane l from value(l), for values spread over memory (one particle's field each). Built in
+// Lane l of x.
+template <class V>
+inline auto lane_of(const V& x, int l) {
+  if constexpr (std::is_arithmetic_v<V>) {
+    (void)l;
+    return x;
+  } else {
+    return x[l];
+  }
+}
+
+// to's lane l = value(l), for values spread over memory (one particle's field each). Built in
 // one initialisation: filling lanes one at a time goes through memory.
+template <class V, class F>
+inline void gather_lanes(V& to, F&& value) {
+  if constexpr (std::is_arithmetic_v<V>) {
+    to = value(0);
+  } else {
+    [&]<int... L>(std::integer_sequence<int, L...>) {
+      to = V{value(L)...};
+    }
+    (std::make_integer_sequence<int, lane_count<V>()>{});
+  }
+}
+
+template <int W>
+inline double lane(const Pack<W>& pack, int l) {
+  return lane_of(pack, l);
+}
+
+// A pack from value(l) (see gather_lanes).
 template <int W, class F>
 inline Pack<W> make_pack(F&& value) {
-  if constexpr (W == 1) {
-    return value(0);
-  } else {
-    return [&]<int... L>(std::integer_sequence<int, L...>) {
-      return Pack<W>{value(L)...};
-    }
-    (std::make_integer_sequence<int, W>{});
-  }
+  Pack<W> pack;
+  gather_lanes(pack, value);
+  return pack;
 }
 
 // Whether every lane of a comparison's result is true, with one branch for the whole pack

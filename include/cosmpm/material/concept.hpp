@@ -60,6 +60,15 @@ concept HasBatchUpdate = ConstitutiveModel<M> &&
   { model.update_batch(stress, state, increment) } -> std::same_as<void>;
 };
 
+// The check of a batch update's arguments: one size for the stress, state and increment spans.
+inline void require_equal_batch_sizes(std::string_view where, std::size_t stress, std::size_t state,
+                                      std::size_t increment) {
+  if (stress != state || stress != increment)
+    throw Error(std::string(where) + ": stress has " + std::to_string(stress) + " points, state " +
+                std::to_string(state) + " and increment " + std::to_string(increment) +
+                "; the three sizes must be equal");
+}
+
 // update(stress[i], state[i], increment[i]) for every i, by the model's update_batch when it
 // has one and otherwise by a loop over update(): one call for any model. The spans must have
 // the same size and must not overlap.
@@ -70,10 +79,8 @@ void update_batch(const M& model, std::span<typename M::stress_type> stress,
   if constexpr (HasBatchUpdate<M>) {
     model.update_batch(stress, state, increment);
   } else {
-    if (stress.size() != state.size() || stress.size() != increment.size())
-      throw Error("material::update_batch: stress has " + std::to_string(stress.size()) +
-                  " points, state " + std::to_string(state.size()) + " and increment " +
-                  std::to_string(increment.size()) + "; the three sizes must be equal");
+    require_equal_batch_sizes("material::update_batch", stress.size(), state.size(),
+                              increment.size());
     for (std::size_t i = 0; i < stress.size(); ++i) model.update(stress[i], state[i], increment[i]);
   }
 }

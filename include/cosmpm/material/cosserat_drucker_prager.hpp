@@ -76,9 +76,6 @@ class CosseratDruckerPrager {
     mode_stiffness_ = {2 * g * (invariant.a1 + invariant.a2),
                        2 * elastic_.cosserat_shear * (invariant.a1 - invariant.a2),
                        2 * g * invariant.a3};
-    couple_weight_ = invariant.a3 / (elastic_.length * elastic_.length);
-    symmetric_weight_ = invariant.a1 + invariant.a2;
-    skew_weight_ = 2 * (invariant.a1 - invariant.a2);
     bulk_beta_ = elastic_.iso.bulk() * coefficients_.beta;
     slope_ = coefficients_.alpha * bulk_beta_;
     for (int j = 0; j < 3; ++j) {
@@ -89,8 +86,13 @@ class CosseratDruckerPrager {
     c_max_ = std::max({mode_stiffness_[0], mode_stiffness_[1], mode_stiffness_[2]});
     inverse_rate_max_ = 1 / (slope_ + c_max_);
     moduli_ = elastic_.moduli();
-    trial_weights_ = {symmetric_weight_, symmetric_weight_ / 2, skew_weight_ / 4,
-                      couple_weight_,    coefficients_.k,       coefficients_.alpha};
+    // q^2 = (a1 + a2) (d:d + 2 sym^2) + 2 (a1 - a2) skew^2 + a3 m.m / l^2, with sym and skew the
+    // halves of t3 + t4 and t3 - t4.
+    const T symmetric_weight = invariant.a1 + invariant.a2;
+    const T skew_weight = 2 * (invariant.a1 - invariant.a2);
+    trial_weights_ = {symmetric_weight, symmetric_weight / 2,
+                      skew_weight / 4,  invariant.a3 / (elastic_.length * elastic_.length),
+                      coefficients_.k,  coefficients_.alpha};
     for (int j = 0; j < 3; ++j) {  // the modes by rate, equal rates in one group
       int group = 0;
       while (group < groups_ && group_rate_[group] != rate_[j]) ++group;
@@ -116,8 +118,10 @@ class CosseratDruckerPrager {
 
   // The generalised invariant q of a stress.
   T invariant_q(const stress_type& stress) const {
-    const Modes modes = split(stress);
-    return std::sqrt(modes.weight[0] + modes.weight[1] + modes.weight[2]);
+    return std::sqrt(split_trial<T>({stress[0], stress[1], stress[2], stress[3], stress[4],
+                                     stress[5], stress[6]},
+                                    trial_weights_)
+                         .w_sum);
   }
 
   // f = q + alpha p - k in Pa; <= 0 inside.
@@ -139,11 +143,8 @@ class CosseratDruckerPrager {
   // return"). Allocation-free. The three spans must have the same size and must not overlap.
   void update_batch(std::span<stress_type> stress, std::span<state_type> state,
                     std::span<const strain_type> increment) const {
-    if (stress.size() != state.size() || stress.size() != increment.size())
-      throw Error("CosseratDruckerPrager::update_batch: stress has " +
-                  std::to_string(stress.size()) + " points, state " + std::to_string(state.size()) +
-                  " and increment " + std::to_string(increment.size()) +
-                  "; the three sizes must be equal");
+    require_equal_batch_sizes("CosseratDruckerPrager::update_batch", stress.size(), state.size(),
+                              increment.size());
     if constexpr (detail::has_lanes) {
       switch (groups_) {
         case 1:
@@ -161,24 +162,6 @@ class CosseratDruckerPrager {
   }
 
  private:
-  // The stress split into p and the three mode groups with their contributions to q^2.
-  struct Modes {
-    T p{};
-    std::array<T, 3> weight{};  // q^2 = sum of these
-  };
-
-  Modes split(const stress_type& s) const {
-    Modes modes;
-    modes.p = (s[0] + s[1] + s[2]) * (T(1) / 3);  // a product: a division would sit in the chain
-    const T d0 = s[0] - modes.p, d1 = s[1] - modes.p, d2 = s[2] - modes.p;
-    const T sym = (s[3] + s[4]) / 2;
-    const T skew = (s[3] - s[4]) / 2;
-    modes.weight[0] = symmetric_weight_ * (d0 * d0 + d1 * d1 + d2 * d2 + 2 * sym * sym);
-    modes.weight[1] = skew_weight_ * skew * skew;
-    modes.weight[2] = couple_weight_ * (s[5] * s[5] + s[6] * s[6]);
-    return modes;
-  }
-
   // The formulas below are templates on the value type V: T for update(), lanes of T for
   // update_batch(), so both run the same operations (update_batch merges the modes of equal
   // rate, see ConeStart, so the two agree to rounding, not bit for bit).
@@ -772,9 +755,6 @@ class CosseratDruckerPrager {
   CosseratInvariantCoefficients<T> invariant_;
   DruckerPragerMatching matching_;
   std::array<T, 3> mode_stiffness_{};  // c_j: how fast each mode shrinks with dlambda
-  T couple_weight_{};                  // a3 / l^2
-  T symmetric_weight_{};               // a1 + a2
-  T skew_weight_{};                    // 2 (a1 - a2)
   T bulk_beta_{};                      // K beta: dp / dlambda
   T slope_{};                          // alpha beta K: dq / dlambda on the surface from p
   std::array<T, 3> rate_{};            // slope + c_j

@@ -275,33 +275,10 @@ struct PackedStencil : StencilFactors<Dim, K, Pack<W>> {
   COSMPM_ALWAYS_INLINE void compute_from_cell_units(const StencilGrid<Dim>& grid, Position&& xi,
                                                     HalfWidth&& half_width) {
     using P = Pack<W>;
-    if constexpr (W > 1 && requires(const P& x, std::array<P, support>& f) {
-                    K::evaluate_lanes(x, Index{}, f, f);
-                  }) {
-      // Kernels that evaluate whole packs (Linear): the weights from the pack, the first nodes
-      // lane by lane in integers (the scalar weights are dropped as unused), so the node
-      // addresses, which the gather waits for, do not wait for the conversions of the pack.
-      COSMPM_UNROLL
-      for (int d = 0; d < Dim; ++d) {
-        const P xi_d = make_pack<W>([&](int l) { return xi(l)[d]; });
-        K::evaluate_lanes(xi_d, grid.nodes[d], w[d], dw[d]);
-        COSMPM_UNROLL
-        for (int i = 0; i < support; ++i) dw[d][i] *= grid.inverse_cell_size[d];
-      }
-      COSMPM_UNROLL
-      for (int l = 0; l < W; ++l) {
-        first_node[l] = 0;
-        COSMPM_UNROLL
-        for (int d = 0; d < Dim; ++d) {
-          std::array<double, support> unused_w, unused_dw;
-          first_node[l] +=
-              K::evaluate(xi(l)[d], half_width(l)[d], grid.nodes[d], unused_w, unused_dw) *
-              grid.stride[d];
-        }
-      }
-      stride = grid.stride;
-      return;
-    }
+    // The first nodes lane by lane in integers; the weights from the same scalar stencils, or
+    // (kernels that evaluate whole packs, Linear) from the pack, the scalar weights then
+    // dropped as unused. The node addresses, which the gather waits for, so never wait for
+    // the conversions of the pack.
     std::array<SeparableStencil<Dim, K>, W> one;
     COSMPM_UNROLL
     for (int l = 0; l < W; ++l) {
@@ -310,10 +287,19 @@ struct PackedStencil : StencilFactors<Dim, K, Pack<W>> {
     }
     COSMPM_UNROLL
     for (int d = 0; d < Dim; ++d) {
-      COSMPM_UNROLL
-      for (int i = 0; i < support; ++i) {
-        w[d][i] = make_pack<W>([&](int l) { return one[l].w[d][i]; });
-        dw[d][i] = make_pack<W>([&](int l) { return one[l].dw[d][i]; });
+      if constexpr (W > 1 && requires(const P& x, std::array<P, support>& f) {
+                      K::evaluate_lanes(x, Index{}, f, f);
+                    }) {
+        K::evaluate_lanes(make_pack<W>([&](int l) { return xi(l)[d]; }), grid.nodes[d], w[d],
+                          dw[d]);
+        COSMPM_UNROLL
+        for (int i = 0; i < support; ++i) dw[d][i] *= grid.inverse_cell_size[d];
+      } else {
+        COSMPM_UNROLL
+        for (int i = 0; i < support; ++i) {
+          w[d][i] = make_pack<W>([&](int l) { return one[l].w[d][i]; });
+          dw[d][i] = make_pack<W>([&](int l) { return one[l].dw[d][i]; });
+        }
       }
     }
     stride = grid.stride;

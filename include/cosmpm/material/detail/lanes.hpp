@@ -14,7 +14,6 @@
 #include <cstddef>
 #include <cstring>
 #include <type_traits>
-#include <utility>
 
 #if (defined(__GNUC__) || defined(__clang__)) && defined(__SSE2__)
 #include <emmintrin.h>
@@ -59,40 +58,10 @@ inline void store_lanes(T* to, const V& from) {
   std::memcpy(to, &from, sizeof(from));
 }
 
-// The number of lanes: 1 for a plain value.
-template <class V>
-constexpr int lane_count() {
-  if constexpr (std::is_arithmetic_v<V>) {
-    return 1;
-  } else {
-    return static_cast<int>(sizeof(V) / sizeof(std::declval<V&>()[0]));
-  }
-}
-
-// Lane l (a plain value is its own lane 0).
-template <class V>
-inline auto lane_of(const V& x, int l) {
-  if constexpr (std::is_arithmetic_v<V>) {
-    (void)l;
-    return x;
-  } else {
-    return x[l];
-  }
-}
-
-// Lane l = value(l), for values spread over memory, built in one initialisation (filling lanes
-// one at a time goes through memory).
-template <class V, class F>
-inline void gather_lanes(V& to, F&& value) {
-  if constexpr (std::is_arithmetic_v<V>) {
-    to = value(0);
-  } else {
-    [&]<int... L>(std::integer_sequence<int, L...>) {
-      to = V{value(L)...};
-    }
-    (std::make_integer_sequence<int, lane_count<V>()>{});
-  }
-}
+// The lane helpers of the engine's packs, which take any lane type.
+using cosmpm::gather_lanes;
+using cosmpm::lane_count;
+using cosmpm::lane_of;
 
 // x = sqrt(x), lane by lane for lanes: the vector extensions have no square root, so lanes of
 // a register's width take the target's instruction (sqrtpd), others std::sqrt lane by lane.
