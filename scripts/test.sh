@@ -31,6 +31,10 @@ smoke=$(mktemp -d)
 /usr/bin/python3 scripts/plot_flat_blade.py "$smoke/03"
 ./build/release/examples/example_03_flat_blade --polar true --mesh 40x24 --travel 0.001 \
   --equilibrium-time 0.005 --average-from 0 --average-to 0.001 --profile-at 0.001 --out "$smoke/03p"
+./build/release/examples/example_03_flat_blade --method dem --depth 0.06 --rig-length 0.3 --rain-height 0.1 \
+  --travel 0.003 --average-from 0 --average-to 0.003 --stress-from 0 --stress-to 0.003 --pdr-at 0.003 \
+  --frame-interval 0.003 --out "$smoke/03dem"
+/usr/bin/python3 scripts/plot_dem_flat_blade.py forces "$smoke/03dem" --out "$smoke/03dem/forces.png"
 rm -rf "$smoke"
 
 echo "== ASan + UBSan build" >&2

@@ -21,6 +21,7 @@
 #include "cosmpm/analysis/sokolovski.hpp"
 #include "cosmpm/cosmpm.hpp"
 #include "cosmpm/io/hdf5.hpp"
+#include "dem_flat_blade.hpp"
 
 namespace {
 using namespace cosmpm;
@@ -227,6 +228,7 @@ Outcome run(const flat_blade::Case& c, const fs::path& out) {
 }  // namespace
 
 int main(int argc, char** argv) {
+  if (const auto dem_exit = flat_blade_dem::run_if_requested(argc, argv)) return *dem_exit;
   flat_blade::Case c;
   try {
     flat_blade::Parser parser(c);

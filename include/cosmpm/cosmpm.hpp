@@ -8,6 +8,7 @@
 #include "cosmpm/continuum/cosserat.hpp"
 #include "cosmpm/core/error.hpp"
 #include "cosmpm/core/types.hpp"
+#include "cosmpm/dem.hpp"
 #include "cosmpm/grid/boundary.hpp"
 #include "cosmpm/grid/grid.hpp"
 #include "cosmpm/initial/geostatic.hpp"

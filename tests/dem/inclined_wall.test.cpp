@@ -105,3 +105,44 @@ TEST_CASE("inclined wall: a disk rolls at 2/3 g sin(theta), slips above tan(thet
   CHECK(slip.acceleration == doctest::Approx(g * (std::sin(t2) - mu * std::cos(t2))).epsilon(5e-3));
   CHECK(slip.spin_rate == doctest::Approx(2.0 * mu * g * std::cos(t2) / 0.004).epsilon(5e-3));
 }
+
+TEST_CASE("moving polygon wall: a clump on a conveyor is dragged at mu g until it moves with it") {
+  // A box wall (the floor) moving at 0.2 m/s under a resting clump: friction accelerates the
+  // clump at mu g = 2.943 m/s^2 until, after 0.2 / 2.943 = 68 ms, it rides at the belt's speed.
+  const double mu = 0.3, speed = 0.2, r = 0.004, k = 420e3;
+  const dem::ClumpShape shape = dem::ClumpShape::two_disks(0.014, 2 * r);
+  dem::Assembly a;
+  const double overlap = 0.5 * 855.0 * shape.area() * g / (0.5 * k);
+  a.add_clump(shape, 1.0, Vec<2>(0.0, r - overlap), 0.0, 855.0);
+  dem::Simulation<dem::LinearSpring, dem::NoLocalDamping> sim(
+      std::move(a), dem::LinearSpring({.normal_stiffness = k, .shear_stiffness = k, .friction = 0}),
+      dem::NoLocalDamping());
+  auto belt = contact::RigidBody<2>::box(Vec<2>(-1.0, -0.05), Vec<2>(1.0, 0.0));
+  belt.set_velocity(Vec<2>(speed, 0.0));
+  const Index w = sim.add_polygon_wall(
+      "belt", std::move(belt), {.normal_stiffness = k, .shear_stiffness = k, .friction = mu});
+  const double dt = 0.2 * sim.critical_time_step();
+  std::vector<double> times, speeds;
+  while (sim.time() < 0.05) {
+    sim.step(dt);
+    if (sim.time() > 0.01) {
+      times.push_back(sim.time());
+      speeds.push_back(sim.assembly().velocity(0)[0]);
+    }
+  }
+  CHECK(fitted_slope(times, speeds) == doctest::Approx(mu * g).epsilon(5e-3));
+  // The belt's drag on the grain is the grain's drag on the belt, reversed.
+  CHECK(sim.wall_force(w)[0] == doctest::Approx(-mu * g * sim.assembly().mass(0)).epsilon(1e-2));
+  // Then it sticks: its mean speed over 0.1-0.2 s is the belt's (undamped, it rocks on the
+  // shear springs about it by a few mm/s).
+  double sum = 0.0;
+  long n = 0;
+  while (sim.time() < 0.2) {
+    sim.step(dt);
+    if (sim.time() > 0.1) {
+      sum += sim.assembly().velocity(0)[0];
+      ++n;
+    }
+  }
+  CHECK(sum / static_cast<double>(n) == doctest::Approx(speed).epsilon(1e-3));
+}

@@ -220,9 +220,23 @@ struct StepKernels {
           xb[b][0] += step * vb[b][0];
           xb[b][1] += step * vb[b][1];
           theta[b] += step * omega[b];
-          const bool rotates = e1 - e0 > 1 || offset[e0][0] != 0.0 || offset[e0][1] != 0.0;
-          const double cs = rotates ? std::cos(theta[b]) : 1.0;
-          const double sn = rotates ? std::sin(theta[b]) : 0.0;
+          if (e1 - e0 == 1 && offset[e0][0] == 0.0 && offset[e0][1] == 0.0) {
+            // A disk: its element sits on the centroid (no trigonometry).
+            const double mx = xb[b][0] - xe[e0][0], my = xb[b][1] - xe[e0][1];
+            if (!(mx * mx + my * my <= r[e0] * r[e0]) && e0 < local.first_unstable) {
+              local.first_unstable = e0;
+            }
+            xe[e0][0] = xb[b][0];
+            xe[e0][1] = xb[b][1];
+            ve[e0][0] = vb[b][0];
+            ve[e0][1] = vb[b][1];
+            we[e0] = omega[b];
+            const double bx = xb[b][0] - built[e0][0], by = xb[b][1] - built[e0][1];
+            local.max_drift_squared = std::max(local.max_drift_squared, bx * bx + by * by);
+            return;
+          }
+          const double cs = std::cos(theta[b]);
+          const double sn = std::sin(theta[b]);
           for (std::int32_t e = e0; e < e1; ++e) {
             const double ox = cs * offset[e][0] - sn * offset[e][1];
             const double oy = sn * offset[e][0] + cs * offset[e][1];
