@@ -15,5 +15,6 @@
 #include "cosmpm/dem/hertz_mindlin.hpp"
 #include "cosmpm/dem/linear_spring.hpp"
 #include "cosmpm/dem/packing.hpp"
+#include "cosmpm/dem/rolling_resistance.hpp"
 #include "cosmpm/dem/simulation.hpp"
 #include "cosmpm/dem/walls.hpp"

@@ -46,7 +46,7 @@ Impact collide(double speed) {
 TEST_CASE("Hertz-Mindlin: F_n grows as delta^(3/2), k_s as F_n^(1/3)") {
   const dem::HertzMindlin law({.shear_modulus = 1e7, .poisson_ratio = 0.3, .friction = 0.5});
   const auto k = law.pair_constants();
-  double shear = 0.0;
+  dem::ContactHistory shear;
   dem::ContactKinematics c;
   c.effective_radius = 0.005;
   c.overlap = 1e-5;

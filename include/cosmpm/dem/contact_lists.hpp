@@ -14,6 +14,7 @@
 #include <vector>
 
 #include "cosmpm/core/types.hpp"
+#include "cosmpm/dem/contact_law.hpp"
 #include "cosmpm/dem/detail/parallel.hpp"
 #include "cosmpm/dem/fields.hpp"
 
@@ -24,14 +25,14 @@ class ContactLists {
   // Particle pairs: first < second, different bodies.
   std::vector<std::int32_t> first;
   std::vector<std::int32_t> second;
-  std::vector<double> shear;               // elastic shear force (the contact law's history)
+  std::vector<ContactHistory> history;     // the contact law's memory
   std::vector<Index> first_offsets;        // pairs of element e as first: [off[e], off[e+1])
   std::vector<Index> second_offsets;       // the same for second, into second_pairs
   std::vector<std::int32_t> second_pairs;  // pair indices, increasing for each element
   // Element-wall candidates.
   std::vector<std::int32_t> wall_element;
   std::vector<std::int32_t> wall_index;
-  std::vector<double> wall_shear;
+  std::vector<ContactHistory> wall_history;
   std::vector<Index> wall_offsets;  // candidates of element e: [off[e], off[e+1])
   std::vector<Vec<2>> built_at;     // element positions when built
   Index builds = 0;
@@ -53,21 +54,21 @@ class ContactLists {
     build_cells(x, r, skin);
 
     std::vector<std::int32_t> old_first, old_second;
-    std::vector<double> old_shear;
+    std::vector<ContactHistory> old_history;
     std::vector<Index> old_offsets;
     std::vector<std::int32_t> old_wall_element, old_wall_index;
-    std::vector<double> old_wall_shear;
+    std::vector<ContactHistory> old_wall_history;
     std::vector<Index> old_wall_offsets;
     keep_history = keep_history && static_cast<Index>(first_offsets.size()) == n + 1 &&
                    static_cast<Index>(wall_offsets.size()) == n + 1;
     if (keep_history) {
       old_first.swap(first);
       old_second.swap(second);
-      old_shear.swap(shear);
+      old_history.swap(history);
       old_offsets.swap(first_offsets);
       old_wall_element.swap(wall_element);
       old_wall_index.swap(wall_index);
-      old_wall_shear.swap(wall_shear);
+      old_wall_history.swap(wall_history);
       old_wall_offsets.swap(wall_offsets);
     }
 
@@ -98,10 +99,10 @@ class ContactLists {
     const auto wall_pairs = static_cast<std::size_t>(wall_offsets.back());
     first.assign(pairs, 0);
     second.assign(pairs, 0);
-    shear.assign(pairs, 0.0);
+    history.assign(pairs, ContactHistory{});
     wall_element.assign(wall_pairs, 0);
     wall_index.assign(wall_pairs, 0);
-    wall_shear.assign(wall_pairs, 0.0);
+    wall_history.assign(wall_pairs, ContactHistory{});
 
     // Pass 2: fill, sort each element's partners, carry the histories over.
     detail::parallel_for(threads, n, [&](Index i) {
@@ -121,9 +122,9 @@ class ContactLists {
         }
       }
       if (!keep_history) return;
-      carry(old_second, old_shear, old_offsets[u], old_offsets[u + 1], second, shear, begin, k);
-      carry(old_wall_index, old_wall_shear, old_wall_offsets[u], old_wall_offsets[u + 1],
-            wall_index, wall_shear, wall_offsets[u], wk);
+      carry(old_second, old_history, old_offsets[u], old_offsets[u + 1], second, history, begin, k);
+      carry(old_wall_index, old_wall_history, old_wall_offsets[u], old_wall_offsets[u + 1],
+            wall_index, wall_history, wall_offsets[u], wk);
     });
 
     // Pairs by their second element, in increasing pair order.
@@ -146,9 +147,9 @@ class ContactLists {
  private:
   // Copies the history of keys present in both sorted runs.
   static void carry(const std::vector<std::int32_t>& old_keys,
-                    const std::vector<double>& old_values, Index old_begin, Index old_end,
-                    const std::vector<std::int32_t>& keys, std::vector<double>& values, Index begin,
-                    Index end) {
+                    const std::vector<ContactHistory>& old_values, Index old_begin, Index old_end,
+                    const std::vector<std::int32_t>& keys, std::vector<ContactHistory>& values,
+                    Index begin, Index end) {
     Index a = old_begin;
     for (Index b = begin; b < end && a < old_end; ++b) {
       const std::int32_t key = keys[static_cast<std::size_t>(b)];

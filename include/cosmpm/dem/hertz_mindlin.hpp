@@ -66,8 +66,9 @@ class HertzMindlin {
            (2.0 - nu) * std::cbrt(std::max(normal_force, 0.0));
   }
 
-  static ContactForce force(const Constants& k, const ContactKinematics& c, double& shear,
+  static ContactForce force(const Constants& k, const ContactKinematics& c, ContactHistory& history,
                             double dt) {
+    double& shear = history.shear;
     ContactForce f;
     const double root = std::sqrt(c.overlap);
     const double k_hat = normal_coefficient(k, c.effective_radius);
@@ -90,6 +91,10 @@ class HertzMindlin {
       f.shear -= 2.0 * k.damping_ratio * std::sqrt(ks * c.effective_mass) * c.tangential_velocity;
     }
     return f;
+  }
+
+  static double normal_stiffness(const Constants& k, double overlap, double radius) {
+    return 1.5 * normal_coefficient(k, radius) * std::sqrt(std::max(overlap, 0.0));
   }
 
   static double time_step_stiffness(const Constants& k, double radius) {

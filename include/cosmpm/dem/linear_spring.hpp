@@ -69,8 +69,9 @@ class LinearSpring {
     return combine(particle_, wall, wall.friction);
   }
 
-  static ContactForce force(const Constants& k, const ContactKinematics& c, double& shear,
+  static ContactForce force(const Constants& k, const ContactKinematics& c, ContactHistory& history,
                             double dt) {
+    double& shear = history.shear;
     ContactForce f;
     const double elastic = k.normal_stiffness * c.overlap;
     f.normal = elastic;
@@ -95,6 +96,10 @@ class LinearSpring {
 
   static double time_step_stiffness(const Constants& k, double /*radius*/) {
     return k.normal_stiffness + k.shear_stiffness;
+  }
+  // The normal stiffness at an overlap (for laws built on this one, e.g. rolling resistance).
+  static double normal_stiffness(const Constants& k, double /*overlap*/, double /*radius*/) {
+    return k.normal_stiffness;
   }
 
  private:

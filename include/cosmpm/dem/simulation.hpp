@@ -331,7 +331,7 @@ class Simulation {
           wall.kind == WallKind::plane ? wall.point : wall.body->reference_point();
       const Vec<2> r = c.point - centre;
       wall.force += on_wall;
-      wall.torque += r[0] * on_wall[1] - r[1] * on_wall[0];
+      wall.torque += r[0] * on_wall[1] - r[1] * on_wall[0] - c.rolling_moment;
       ++wall.contacts;
     }
   }

@@ -38,6 +38,7 @@ struct WallContact {
   double overlap = 0.0;            // m; <= 0 when the candidate does not touch
   double normal_force = 0.0;       // N/m on the element along the normal, compression positive
   double shear_force = 0.0;        // N/m on the element along (-n_y, n_x)
+  double rolling_moment = 0.0;     // N m/m on the element (rolling resistance)
   int edge = -1;                   // polygon edge of the closest point (-1: plane)
   double along = 0.0;              // its distance from that edge's start vertex, m
 };
@@ -141,6 +142,12 @@ class WallSet {
     const Wall& wall = (*this)[w];
     if (wall.kind == WallKind::plane) return wall.contact_velocity;
     return wall.body->velocity_at(x, wall.contact_velocity, wall.contact_spin);
+  }
+
+  // Spin of wall w during the last move (0 for planes).
+  double spin_of(Index w) const {
+    const Wall& wall = (*this)[w];
+    return wall.kind == WallKind::plane ? 0.0 : wall.contact_spin;
   }
 
   // Moves every wall over [time, time + dt] with its mid-step velocity.

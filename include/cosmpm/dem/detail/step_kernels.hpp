@@ -42,7 +42,7 @@ struct StepKernels {
     const double* mass = e.template get<field::BodyMass>().data();
     const std::int32_t* first = lists.first.data();
     const std::int32_t* second = lists.second.data();
-    double* history = lists.shear.data();
+    ContactHistory* history = lists.history.data();
     Vec<2>* force = pair_force.data();
     Vec<2>* torque = pair_torque.data();
     double* normal_out = pair_normal.data();
@@ -58,7 +58,7 @@ struct StepKernels {
       const double reach = r[i] + r[j];
       const double d2 = dx * dx + dy * dy;
       if (!(d2 < reach * reach)) {
-        history[p] = 0.0;  // a contact that opens forgets its shear
+        history[p] = ContactHistory{};  // a contact that opens forgets its history
         force[p][0] = force[p][1] = 0.0;
         torque[p][0] = torque[p][1] = 0.0;
         normal_out[p] = shear_out[p] = overlap_out[p] = 0.0;
@@ -80,11 +80,12 @@ struct StepKernels {
       c.tangential_velocity = ux * tx + uy * ty;
       c.effective_mass = mass[i] * mass[j] / (mass[i] + mass[j]);
       c.effective_radius = 2.0 * r[i] * r[j] / reach;
+      c.relative_spin = w[j] - w[i];
       const ContactForce f = Law::force(k, c, history[p], step);
       force[p][0] = f.normal * nx + f.shear * tx;
       force[p][1] = f.normal * ny + f.shear * ty;
-      torque[p][0] = -li * f.shear;
-      torque[p][1] = -lj * f.shear;
+      torque[p][0] = -li * f.shear - f.rolling_moment;
+      torque[p][1] = -lj * f.shear + f.rolling_moment;
       normal_out[p] = f.normal;
       shear_out[p] = f.shear;
       overlap_out[p] = overlap;
@@ -100,7 +101,7 @@ struct StepKernels {
     const double* mass = e.template get<field::BodyMass>().data();
     const std::int32_t* element = lists.wall_element.data();
     const std::int32_t* wall = lists.wall_index.data();
-    double* history = lists.wall_shear.data();
+    ContactHistory* history = lists.wall_history.data();
     WallContact* out = wall_contacts.data();
     const Constants* constants = wall_constants.data();
     const auto* set = &walls;
@@ -117,8 +118,8 @@ struct StepKernels {
       o.along = g.along;
       o.normal = g.normal;
       if (!(o.overlap > 0.0)) {
-        history[c] = 0.0;
-        o.normal_force = o.shear_force = 0.0;
+        history[c] = ContactHistory{};
+        o.normal_force = o.shear_force = o.rolling_moment = 0.0;
         o.point = g.point;
         return;
       }
@@ -135,9 +136,11 @@ struct StepKernels {
       k.tangential_velocity = ux * tx + uy * ty;
       k.effective_mass = mass[i];
       k.effective_radius = r[i];
+      k.relative_spin = w[i] - set->spin_of(wi);
       const ContactForce f = Law::force(constants[wi], k, history[c], step);
       o.normal_force = f.normal;
       o.shear_force = f.shear;
+      o.rolling_moment = f.rolling_moment;
     });
   }
 
@@ -200,7 +203,7 @@ struct StepKernels {
               const double nx = o.normal[0], ny = o.normal[1];
               ex += o.normal_force * nx - o.shear_force * ny;
               ey += o.normal_force * ny + o.shear_force * nx;
-              et -= (r[e] - 0.5 * o.overlap) * o.shear_force;
+              et += o.rolling_moment - (r[e] - 0.5 * o.overlap) * o.shear_force;
               ++touching;
             }
             contact_count[e] = touching;
