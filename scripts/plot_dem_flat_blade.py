@@ -4,17 +4,18 @@
     plot_dem_flat_blade.py stress RUN --out FILE                 blade stresses (its Fig. 10)
     plot_dem_flat_blade.py pdr RUN [--at 15] --out FILE          PDR >= 0.15 map (its Fig. 11)
     plot_dem_flat_blade.py layers RUN --out FILE                 coloured layers (its Figs. 1-2)
-    plot_dem_flat_blade.py depths RUN [RUN...] [--mpm RUN...] --out FILE
+    plot_dem_flat_blade.py depths RUN [RUN...] [--mpm RUN...] [--mpm-table 150:359.6,...] --out FILE
                                                                  average drafts vs depth (Fig. 8)
     plot_dem_flat_blade.py biaxial RUN [RUN...] --out FILE       biaxial test curves
+    plot_dem_flat_blade.py network RUN [--frame 4] --out FILE    contact force network (HDF5 frame)
 
 RUN is an output directory of the example. Forces are per metre of blade width (the DEM's unit
 thickness); stresses compression positive at the blade.
 """
 import argparse
 import csv
-import math
 import os
+import re
 
 import matplotlib
 
@@ -41,7 +42,7 @@ def summary(run):
 
 def label(run):
     s = summary(run)
-    return f"h = {s['depth_m'] * 1000:.0f} mm"
+    return f"h = {s['depth_m'] * 1000:.0f} mm ({series_name(run)})"
 
 
 def plot_forces(runs, out):
@@ -137,52 +138,105 @@ def plot_layers(run, out):
                    if f.startswith("particles_") and f.endswith("mm.csv"))
     snaps = [t for t in snaps if t >= 100] or snaps
     s = summary(run)
-    fig, axes = plt.subplots(len(snaps), 1, figsize=(10, 2.6 * len(snaps)), squeeze=False)
+    rows = (len(snaps) + 1) // 2
+    fig, axes = plt.subplots(rows, 2, figsize=(13, 3.3 * rows), squeeze=False)
     palette = ["#1f4e9a", "#e0b000", "#b0202a", "#2a8a3a", "#7a4a9a", "#e07020", "#20a0b0"]
-    for ax, t in zip(axes[:, 0], snaps):
+    for ax, t in zip(axes.flat, snaps):
         part = read_csv(os.path.join(run, f"particles_{t}mm.csv"))
         colours = [palette[int(k) % len(palette)] for k in part["layer"]]
         face = s["blade_face_x_m"] + t / 1000
         disks(ax, part, colours, (face - 0.05, face + 0.65))
         ax.axvline(face, color="k", lw=3)
         ax.set_title(f"blade travel {t} mm", fontsize=9)
-        ax.set_ylim(0, 0.45)
+        ax.set_ylim(0, 0.42)
+    for ax in list(axes.flat)[len(snaps):]:
+        ax.axis("off")
     fig.suptitle(f"DEM, h = {s['depth_m'] * 1000:.0f} mm: layers coloured by initial height",
                  fontsize=10)
     fig.tight_layout()
     fig.savefig(out, dpi=130)
 
 
-def plot_depths(runs, mpm_runs, out):
-    fig, ax = plt.subplots(figsize=(7, 5))
-    dem = sorted((summary(r)["depth_m"], summary(r)) for r in runs)
-    depths = [1000 * d for d, _ in dem]
-    soko = [s["sokolovski_draft_N_per_m"] for _, s in dem]
-    ax.plot(depths, [s["average_draft_N_per_m"] for _, s in dem], "o-", label="DEM (this work)")
-    ax.plot(depths, soko, "k--", label="Sokolovski (phi 26, delta 14 deg, 778 kg/m$^3$)")
-    exp = []
-    for (d, s), sk in zip(dem, soko):
-        key = min(PAPER_MPM_OVER_SOKOLOVSKI, key=lambda k: abs(k - d))
-        if abs(key - d) < 1e-6:
-            exp.append((1000 * d, PAPER_MPM_OVER_SOKOLOVSKI[key] * sk /
-                        (1 - PAPER_MPM_UNDER_EXPERIMENT[key])))
+def series_name(run):
+    """A run directory's name without its depth: runs of one series differ only in h."""
+    name = os.path.basename(os.path.normpath(run))
+    return re.sub(r"_?h0?\.?[0-9]+$", "", name) or name
+
+
+def plot_depths(runs, mpm_runs, mpm_table, out):
+    fig, ax = plt.subplots(figsize=(8, 5.5))
+    groups = {}
+    for r in runs:
+        groups.setdefault(series_name(r), []).append(summary(r))
+    soko = {}
+    for i, (name, sums) in enumerate(sorted(groups.items())):
+        sums.sort(key=lambda s: s["depth_m"])
+        ax.plot([1000 * s["depth_m"] for s in sums], [s["average_draft_N_per_m"] for s in sums],
+                "o-", color=f"C{i}", label=f"DEM: {name}")
+        for s in sums:
+            soko[round(s["depth_m"], 4)] = s["sokolovski_draft_N_per_m"]
+    depths = sorted(soko)
+    ax.plot([1000 * d for d in depths], [soko[d] for d in depths], "k--",
+            label="Sokolovski (phi 26, delta 14 deg, 778 kg/m$^3$)")
+    exp = [(1000 * d, PAPER_MPM_OVER_SOKOLOVSKI[d] * soko[d] / (1 - PAPER_MPM_UNDER_EXPERIMENT[d]))
+           for d in depths if d in PAPER_MPM_OVER_SOKOLOVSKI]
     if exp:
-        ax.plot(*zip(*exp), "s", color="C3", label="experiment (from the paper's percentages)")
-        lo = [(x, 0.94 * y) for x, y in exp]
-        hi = [(x, 1.12 * y) for x, y in exp]
-        ax.fill_between([x for x, _ in lo], [y for _, y in lo], [y for _, y in hi], color="C3",
-                        alpha=0.12, label="the paper's DEM: -6 % to +12 % of experiment")
-    if mpm_runs:
-        mpm = sorted((summary(r)["depth_m"], summary(r)["average_draft_N_per_m"])
-                     for r in mpm_runs)
-        ax.plot([1000 * d for d, _ in mpm], [f for _, f in mpm], "^-", color="C2",
-                label="nonpolar MPM (this work)")
+        ax.plot(*zip(*exp), "s", color="C3", ms=7, label="experiment (from the paper's percentages)")
+        ax.fill_between([x for x, _ in exp], [0.94 * y for _, y in exp],
+                        [1.12 * y for _, y in exp], color="C3", alpha=0.12,
+                        label="the paper's DEM: -6 % to +12 % of experiment")
+    mpm = [(summary(r)["depth_m"], summary(r)["average_draft_N_per_m"]) for r in mpm_runs]
+    for item in mpm_table.split(",") if mpm_table else []:
+        h, f = item.split(":")
+        mpm.append((float(h) / 1000, float(f)))
+    if mpm:
+        mpm.sort()
+        ax.plot([1000 * d for d, _ in mpm], [f for _, f in mpm], "^-", color="0.4",
+                label="nonpolar MPM (this toolkit, 120 x 70)")
     ax.set_xlabel("blade depth h [mm]")
-    ax.set_ylabel("average draft force 15-35 mm [N/m]")
+    ax.set_ylabel("average draft force over 15-35 mm [N/m]")
     ax.grid(alpha=0.3)
-    ax.legend(fontsize=8)
+    ax.legend(fontsize=7)
     fig.tight_layout()
     fig.savefig(out, dpi=130)
+
+
+def plot_network(run, frame, out):
+    import h5py  # only this plot reads the HDF5 frames
+    import numpy as np
+    from matplotlib.collections import LineCollection
+
+    path = os.path.join(run, "frames", f"dem_flat_blade_{frame:06d}.h5")
+    with h5py.File(path, "r") as f:
+        x = f["/particles/position"][:]
+        r = f["/particles/radius"][:]
+        points = f["/contacts/points"][:, :2].reshape(-1, 2, 2)
+        force = f["/contacts/force"][:]
+        walls = f["/walls/points"][:, :2].reshape(-1, 2, 2)
+        time = f.attrs["time"]
+    s = summary(run)
+    fig, ax = plt.subplots(figsize=(11, 4.6))
+    coll = EllipseCollection(2 * r, 2 * r, np.zeros_like(r), units="xy", offsets=x,
+                             offset_transform=ax.transData, facecolors="0.88",
+                             edgecolors="none")
+    ax.add_collection(coll)
+    scale = np.percentile(force, 99)
+    order = np.argsort(force)
+    lines = LineCollection(points[order], linewidths=0.2 + 2.5 * force[order] / scale,
+                           colors=plt.cm.inferno_r(0.15 + 0.85 * np.clip(force[order] / scale, 0, 1)))
+    ax.add_collection(lines)
+    ax.add_collection(LineCollection(walls, colors="k", linewidths=2.5))
+    face = s["blade_face_x_m"]
+    ax.set_xlim(face - 0.03, face + 2.4 * s["depth_m"])
+    ax.set_ylim(-0.005, s["depth_m"] + 0.06)
+    ax.set_aspect("equal")
+    ax.set_title(f"DEM contact force network, h = {s['depth_m'] * 1000:.0f} mm, frame {frame} "
+                 f"(t = {time:.2f} s); line width and colour: contact force (99th percentile "
+                 f"{scale:.0f} N/m)", fontsize=9)
+    ax.set_xlabel("x [m]")
+    ax.set_ylabel("y [m]")
+    fig.tight_layout()
+    fig.savefig(out, dpi=150)
 
 
 def plot_biaxial(runs, out):
@@ -209,10 +263,14 @@ def plot_biaxial(runs, out):
 
 def main():
     parser = argparse.ArgumentParser()
-    parser.add_argument("kind", choices=["forces", "stress", "pdr", "layers", "depths", "biaxial"])
+    parser.add_argument("kind", choices=["forces", "stress", "pdr", "layers", "depths", "biaxial",
+                                         "network"])
     parser.add_argument("runs", nargs="+")
-    parser.add_argument("--mpm", nargs="*", default=[])
+    parser.add_argument("--mpm", nargs="*", default=[], help="MPM run directories")
+    parser.add_argument("--mpm-table", default="",
+                        help="MPM drafts as h_mm:N_per_m,... (e.g. from docs/validation.md)")
     parser.add_argument("--at", type=int, default=15)
+    parser.add_argument("--frame", type=int, default=4)
     parser.add_argument("--threshold", type=float, default=0.15)
     parser.add_argument("--out", required=True)
     a = parser.parse_args()
@@ -225,7 +283,9 @@ def main():
     elif a.kind == "layers":
         plot_layers(a.runs[0], a.out)
     elif a.kind == "depths":
-        plot_depths(a.runs, a.mpm, a.out)
+        plot_depths(a.runs, a.mpm, a.mpm_table, a.out)
+    elif a.kind == "network":
+        plot_network(a.runs[0], a.frame, a.out)
     else:
         plot_biaxial(a.runs, a.out)
     print(f"wrote {a.out}")
