@@ -43,8 +43,14 @@ auto make_block(int threads) {
   SimulationParameters<2> parameters;
   parameters.gravity = Vec<2>(0.0, -9.81);
   parameters.threads = threads;
-  if constexpr (Continuum::is_cosserat) parameters.micro_inertia = 12.5e-6;
-  Sim sim(grid, make_model(std::type_identity<Model>{}), parameters);
+  const Continuum continuum = [] {
+    if constexpr (Continuum::is_cosserat) {
+      return Continuum(make_model(std::type_identity<Model>{}), {.micro_inertia = 12.5e-6});
+    } else {
+      return Continuum(make_model(std::type_identity<Model>{}));
+    }
+  }();
+  Sim sim(grid, continuum, parameters);
   // Keep the particles a cell away from the side faces, where the splines' boundary
   // treatment would otherwise differ from the interior's.
   const auto seeding = particles::seed_box(grid, Vec<2>(0.0, 0.0), Vec<2>(1.2, 0.35), 2);

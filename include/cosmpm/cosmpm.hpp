@@ -5,6 +5,7 @@
 #include "cosmpm/analysis.hpp"
 #include "cosmpm/contact.hpp"
 #include "cosmpm/continuum/classical.hpp"
+#include "cosmpm/continuum/concept.hpp"
 #include "cosmpm/continuum/cosserat.hpp"
 #include "cosmpm/core/error.hpp"
 #include "cosmpm/core/types.hpp"

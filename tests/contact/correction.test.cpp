@@ -29,8 +29,8 @@ struct OneNode {
   }
   Vec<2> correct(const Vec<2>& trial) {
     velocity[static_cast<std::size_t>(node)] = trial;
-    contact::GridView<2> view{grid,  mass, velocity, 1e-12, 0.1, 0.0, contact::Phase::end_velocity,
-                              &spin, 1.0};
+    contact::GridView<2> view{grid, mass, velocity, 1e-12, 0.1, 0.0, contact::Phase::end_velocity,
+                              spin, 1.0};
     law.correct(view);
     return velocity[static_cast<std::size_t>(node)];
   }

@@ -27,8 +27,9 @@
 #include <utility>
 #include <vector>
 
+#include "cosmpm/contact/concept.hpp"
+#include "cosmpm/contact/grid_view.hpp"
 #include "cosmpm/contact/rigid_body.hpp"
-#include "cosmpm/contact/single_field.hpp"
 #include "cosmpm/core/error.hpp"
 #include "cosmpm/core/types.hpp"
 #include "cosmpm/grid/grid.hpp"
@@ -338,8 +339,8 @@ class RigidContact {
           }
         }
         view.velocity[n] = v_new;
-        if (state != NodeState::separating && e.interface.hold_rotation && view.spin != nullptr) {
-          (*view.spin)[static_cast<std::size_t>(n)] = body_omega;
+        if (state != NodeState::separating && e.interface.hold_rotation && !view.spin.empty()) {
+          view.spin[static_cast<std::size_t>(n)] = body_omega;
         }
         if (!record) continue;
         ContactNode<Dim> r;
@@ -367,5 +368,7 @@ class RigidContact {
   Vec<Dim> cell_size_ = Vec<Dim>::Ones();
   Vec<Dim> origin_ = Vec<Dim>::Zero();
 };
+
+static_assert(ContactLaw<RigidContact<2>, 2>);
 
 }  // namespace cosmpm::contact

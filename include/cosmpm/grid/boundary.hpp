@@ -3,9 +3,11 @@
 #include <array>
 #include <cmath>
 #include <string>
+#include <vector>
 
 #include "cosmpm/core/error.hpp"
 #include "cosmpm/core/types.hpp"
+#include "cosmpm/grid/grid.hpp"
 
 namespace cosmpm::grid {
 
@@ -37,14 +39,6 @@ class BoundaryConditions {
     faces_[face_index] = {kind, friction_coefficient};
   }
   const FaceCondition& operator[](int face_index) const { return faces_[face_index]; }
-
-  // Cosserat continua: whether the micro-rotation rate is held at zero on a face.
-  void set_rotation_fixed(int face_index, bool fixed) {
-    require_in_range("BoundaryConditions::set_rotation_fixed", "face", face_index, 0,
-                     face_count - 1, Bounds::closed);
-    rotation_fixed_[face_index] = fixed;
-  }
-  bool rotation_fixed(int face_index) const { return rotation_fixed_[face_index]; }
 
   // Imposes the face condition on the updated velocity `v` of a node lying on that face. For
   // a friction wall the removed normal velocity is the impulse that bounds the tangential one.
@@ -81,7 +75,42 @@ class BoundaryConditions {
 
  private:
   std::array<FaceCondition, face_count> faces_{};
-  std::array<bool, face_count> rotation_fixed_{};
 };
+
+// f(n) for every node n on the lower (upper = false) or upper face normal to `axis`.
+template <int Dim, class F>
+void for_each_face_node(const Grid<Dim>& grid, int axis, bool upper, F&& f) {
+  std::array<Index, Dim> ijk{};
+  ijk[axis] = upper ? grid.nodes(axis) - 1 : 0;
+  Index total = 1;
+  for (int d = 0; d < Dim; ++d) {
+    if (d != axis) total *= grid.nodes(d);
+  }
+  for (Index k = 0; k < total; ++k) {
+    Index rest = k;
+    for (int d = 0; d < Dim; ++d) {
+      if (d == axis) continue;
+      ijk[d] = rest % grid.nodes(d);
+      rest /= grid.nodes(d);
+    }
+    f(grid.node_index(ijk));
+  }
+}
+
+// The face conditions on a nodal velocity field, face by face in face order, so a node on
+// several faces (a corner) takes them in the order of the faces.
+template <int Dim>
+void apply_boundary_conditions(const BoundaryConditions<Dim>& conditions, const Grid<Dim>& grid,
+                               std::vector<Vec<Dim>>& velocity) {
+  for (int face = 0; face < 2 * Dim; ++face) {
+    const auto& condition = conditions[face];
+    if (condition.kind == BoundaryKind::free) continue;
+    const int axis = face / 2;
+    const bool upper = face % 2 == 1;
+    for_each_face_node(grid, axis, upper, [&](Index n) {
+      BoundaryConditions<Dim>::apply(condition, axis, upper, velocity[static_cast<std::size_t>(n)]);
+    });
+  }
+}
 
 }  // namespace cosmpm::grid
