@@ -48,19 +48,26 @@ consteval bool kernel_support_fits_block() {
   return true;
 }
 
-// The composition's checks, run before anything else of Simulation is instantiated.
+// The composition's checks, run before anything else of Simulation is instantiated; each
+// failure is a static_assert naming what is wrong.
 template <int Dim, class Kernel, class Continuum, class Contact, class Scheme>
 struct CompositionChecks {
-  static_assert(Dim == 2,
-                "Simulation<3, ...>: 3D is not implemented yet (the continua, materials and "
-                "contact laws are 2D plane strain)");
-  static_assert(continuum::check_continuum<Continuum, Dim>());
-  static_assert(kernel_support_fits_block<Kernel::support,
-                                          BlockScheduler<Dim, Kernel>::smallest_block_cells()>());
-  static_assert(contact::check_contact_law<Contact, Dim>());
-  static_assert(integrator::Integrator<Scheme>,
-                "Simulation: the scheme needs `static const char* name()` and `template <class "
-                "Sim> static void step(Sim&, double dt)` (integrator/concept.hpp)");
+  static consteval bool check() {
+    static_assert(Dim == 2,
+                  "Simulation<3, ...>: 3D is not implemented yet (the continua, materials and "
+                  "contact laws are 2D plane strain)");
+    if constexpr (Dim == 2) {
+      static_assert(continuum::check_continuum<Continuum, Dim>());
+      static_assert(kernel_support_fits_block<
+                    Kernel::support, BlockScheduler<Dim, Kernel>::smallest_block_cells()>());
+      static_assert(contact::check_contact_law<Contact, Dim>());
+      static_assert(integrator::Integrator<Scheme>,
+                    "Simulation: the scheme needs `static const char* name()` and `template "
+                    "<class Sim> static void step(Sim&, double dt)` (integrator/concept.hpp)");
+    }
+    return true;
+  }
+  static_assert(check());
 };
 }  // namespace detail
 

@@ -7,6 +7,7 @@
 #include <limits>
 #include <span>
 
+#include "cosmpm/continuum/objective_update.hpp"
 #include "cosmpm/continuum/particle_fields.hpp"
 #include "cosmpm/continuum/rates.hpp"
 #include "cosmpm/core/compiler.hpp"
@@ -44,9 +45,7 @@ requires(!Model::is_cosserat) class Classical {
   // the spin, then let the model integrate the strain increment.
   static void update_stress(const Model& model, const rates_type<2>& rates, double dt,
                             stress_type& stress, state_type& state, strain_type& strain) {
-    const strain_type increment = rotate_and_increment(rates, dt, stress);
-    model.update(stress, state, increment);
-    accumulate_strain(strain, increment);
+    objective_update<Classical>(model, rates, dt, stress, state, strain);
   }
 
   // update_stress in parts, for callers that hand the model many points in one call

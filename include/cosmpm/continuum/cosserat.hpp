@@ -18,6 +18,7 @@
 #include <cmath>
 #include <span>
 
+#include "cosmpm/continuum/objective_update.hpp"
 #include "cosmpm/continuum/particle_fields.hpp"
 #include "cosmpm/continuum/rates.hpp"
 #include "cosmpm/core/error.hpp"
@@ -78,9 +79,7 @@ requires(Model::is_cosserat) class Cosserat {
 
   static void update_stress(const Model& model, const rates_type<2>& rates, double dt,
                             stress_type& stress, state_type& state, strain_type& strain) {
-    const strain_type increment = rotate_and_increment(rates, dt, stress);
-    model.update(stress, state, increment);
-    accumulate_strain(strain, increment);
+    objective_update<Cosserat>(model, rates, dt, stress, state, strain);
   }
 
   // The in-plane stress is rotated with the continuum spin (Jaumann, valid for a

@@ -94,7 +94,7 @@ class BlockScheduler {
   // misplaced one (`count` for none); f may also return nothing. Also notes the largest team
   // of threads that ran a colour (last_team_size()).
   template <class F>
-  std::array<Index, 2> for_each_coloured(int threads, Index count, F&& f) {
+  std::array<Index, 2> for_each_coloured([[maybe_unused]] int threads, Index count, F&& f) {
     const Index* start = block_start_.data();
     const Index* order = order_.data();
     Index first_invalid = count;
