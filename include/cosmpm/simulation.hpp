@@ -58,8 +58,9 @@ struct CompositionChecks {
                   "contact laws are 2D plane strain)");
     if constexpr (Dim == 2) {
       static_assert(continuum::check_continuum<Continuum, Dim>());
-      static_assert(kernel_support_fits_block<
-                    Kernel::support, BlockScheduler<Dim, Kernel>::smallest_block_cells()>());
+      static_assert(
+          kernel_support_fits_block<Kernel::support,
+                                    BlockScheduler<Dim, Kernel>::smallest_block_cells()>());
       static_assert(contact::check_contact_law<Contact, Dim>());
       static_assert(integrator::Integrator<Scheme>,
                     "Simulation: the scheme needs `static const char* name()` and `template "
@@ -164,6 +165,7 @@ class Simulation : detail::CompositionChecks<Dim, Kernel, Continuum, Contact, Sc
                   "double dt)` this simulation can call (integrator/concept.hpp)");
     require_positive("Simulation::step", "dt", dt);
     Scheme::step(*this, dt);
+    handle_stray_particles();
     state_.contact.advance(dt, state_.clock.time);
     state_.clock.time += dt;
     ++state_.clock.step_count;
@@ -195,6 +197,9 @@ class Simulation : detail::CompositionChecks<Dim, Kernel, Continuum, Contact, Sc
   }
   // Constitutive update, deformation gradient and volume from those rates.
   void update_stress(double dt) { stages::update_stress(state_, dt); }
+  // Particles that left the grid box leave the simulation (SimulationParameters::
+  // stray_particles); step() calls it last.
+  void handle_stray_particles() { stages::handle_stray_particles(state_); }
 
   // --- access -----------------------------------------------------------------------------
   store_type& particles() { return state_.particles; }
@@ -214,6 +219,9 @@ class Simulation : detail::CompositionChecks<Dim, Kernel, Continuum, Contact, Sc
   double time() const { return state_.clock.time; }
   std::int64_t step_count() const { return state_.clock.step_count; }
   int threads() const { return state_.threads; }
+  // Particles that left the grid under StrayParticles::freeze or ::remove, and the frozen ones.
+  const StrayReport& stray_particles() const { return state_.strays; }
+  const store_type& frozen_particles() const { return state_.frozen; }
   // Threads that ran the last coloured particle pass (1: serial).
   int last_team_size() const { return state_.blocks.last_team_size(); }
   // Everything the stages work on, for users who write stages of their own.

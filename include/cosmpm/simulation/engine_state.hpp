@@ -55,6 +55,9 @@ struct EngineState {
   StepClock clock;
   double typical_particle_mass = 0.0;  // the largest particle mass added
   double max_density = 0.0;
+  StrayReport strays;
+  bool strays_pending = false;  // set by the grid-to-particle map, handled at the step's end
+  store_type frozen;            // strays kept under StrayParticles::freeze
 
   // Shared by the stages of one step:
   std::vector<double> scatter;  // node records of the particle-to-grid maps

@@ -20,6 +20,7 @@
 #include "cosmpm/shape/stencil_grid.hpp"
 #include "cosmpm/shape/transfer.hpp"
 #include "cosmpm/simulation/diagnostics.hpp"
+#include "cosmpm/simulation/parameters.hpp"
 #include "cosmpm/stages/deformation.hpp"
 #include "cosmpm/stages/particle_to_grid.hpp"
 #include "cosmpm/stages/stress_update.hpp"
@@ -171,13 +172,56 @@ void map_to_particles(State& s, double dt) {
   }
   if (first_moved < count) s.blocks.mark_changed();
   // A particle that left the grid usually also tore its neighbourhood: name the cause.
-  if (first_outside < count) throw_outside<Dim>(s.particles, s.grid, first_outside, s.clock);
+  if (first_outside < count) {
+    if (s.parameters.stray_particles == StrayParticles::stop) {
+      throw_outside<Dim>(s.particles, s.grid, first_outside, s.clock);
+    }
+    s.strays_pending = true;  // the rest of the step still maps them at their start stencils
+  }
   if (first_bad < count) {
     throw_unstable_stress<Dim, typename State::model_type>(s.particles, first_bad, s.clock);
   }
 }
 
 }  // namespace detail
+
+// At the end of a step: the particles outside the open grid box leave the simulation under
+// StrayParticles::freeze (kept in s.frozen) or ::remove, counted with their mass. A stray
+// whose position or velocity is not finite stops the run instead: it is unstable.
+template <class State>
+void handle_stray_particles(State& s) {
+  constexpr int Dim = State::dim;
+  s.strays.count_last_step = 0;
+  s.strays.mass_last_step = 0.0;
+  if (!s.strays_pending) return;
+  s.strays_pending = false;
+  const auto& x = s.particles.template get<particles::field::Position<Dim>>();
+  const auto& v = s.particles.template get<particles::field::Velocity<Dim>>();
+  const auto& mass = s.particles.template get<particles::field::Mass>();
+  const shape::StencilGrid<Dim> stencil_grid(s.grid);
+  const auto outside = [&](Index p) {
+    for (int d = 0; d < Dim; ++d) {
+      const double xi = (x[p][d] - stencil_grid.origin[d]) * stencil_grid.inverse_cell_size[d];
+      if (!stencil_grid.inside(d, xi)) return true;
+    }
+    return false;
+  };
+  double stray_mass = 0.0;
+  for (Index p = 0; p < s.particles.size(); ++p) {
+    if (!outside(p)) continue;
+    if (!x[p].allFinite() || !v[p].allFinite()) throw_outside<Dim>(s.particles, s.grid, p, s.clock);
+    stray_mass += mass[p];
+  }
+  const bool keep = s.parameters.stray_particles == StrayParticles::freeze;
+  const Index moved = s.particles.extract_if(outside, keep ? &s.frozen : nullptr);
+  s.strays.count += moved;
+  s.strays.mass += stray_mass;
+  s.strays.count_last_step = moved;
+  s.strays.mass_last_step = stray_mass;
+  // The step's per-particle buffers no longer match; the next map_to_grid rebuilds them.
+  s.stencil_cells.clear();
+  s.particle_rates.clear();
+}
 
 // Pure FLIP (the default) is its own instantiation: its update needs no blend.
 template <class State>
