@@ -135,4 +135,14 @@ class Store {
   Index size_ = 0;
 };
 
+// A store with the fields of Store and Extra (e.g. the fields a velocity transfer adds).
+template <class Store, class... Extra>
+struct AppendFields;
+template <FieldTag... Tags, FieldTag... Extra>
+struct AppendFields<Store<Tags...>, Extra...> {
+  using type = Store<Tags..., Extra...>;
+};
+template <class S, class... Extra>
+using append_fields_t = typename AppendFields<S, Extra...>::type;
+
 }  // namespace cosmpm::particles

@@ -24,10 +24,15 @@
 #include "cosmpm/stages/deformation.hpp"
 #include "cosmpm/stages/particle_to_grid.hpp"
 #include "cosmpm/stages/stress_update.hpp"
+#include "cosmpm/transfer/apic.hpp"
 
 namespace cosmpm::stages {
 
 namespace detail {
+
+// How a particle's velocity is updated: FLIP, a PIC/FLIP blend, or APIC's PIC velocity with
+// its affine matrix (transfer/apic.hpp).
+enum class VelocityUpdate { flip, blend, affine };
 
 // What every particle of a grid-to-particle map shares.
 template <int Dim, class Blocks>
@@ -40,7 +45,7 @@ struct ParticleMapPass {
 };
 
 // Grid to particles p, ..., p + W - 1.
-template <int W, bool with_stress_update, bool pure_flip, class State>
+template <int W, bool with_stress_update, VelocityUpdate update, class State>
 COSMPM_ALWAYS_INLINE void map_from_grid(State& s, Index p, const auto& pass, Index& first_outside,
                                         Index& first_bad, Index& first_moved) {
   constexpr int Dim = State::dim;
@@ -54,6 +59,7 @@ COSMPM_ALWAYS_INLINE void map_from_grid(State& s, Index p, const auto& pass, Ind
   const auto& start = s.stencil_cells;
   const double dt = pass.dt;
   const double flip = pass.flip;
+  constexpr bool affine = update == VelocityUpdate::affine;
   // Velocity (and the rotational rates) with gradients when the stress is updated here, then
   // the accelerations.
   constexpr int with_gradient = with_stress_update ? Record::with_gradient : 0;
@@ -69,13 +75,31 @@ COSMPM_ALWAYS_INLINE void map_from_grid(State& s, Index p, const auto& pass, Ind
     const P a_grid = grid_values.value[Record::acceleration + d];
     const P v_old = make_pack<W>([&](int l) { return v[p + l][d]; });
     const P x_old = make_pack<W>([&](int l) { return x[p + l][d]; });
-    P v_new = v_old + dt * a_grid;
-    if constexpr (!pure_flip) v_new = flip * v_new + (1.0 - flip) * v_grid;
+    P v_new;
+    if constexpr (affine) {
+      v_new = v_grid;
+      (void)v_old;
+      (void)a_grid;
+    } else {
+      v_new = v_old + dt * a_grid;
+      if constexpr (update == VelocityUpdate::blend) v_new = flip * v_new + (1.0 - flip) * v_grid;
+    }
     const P x_new = x_old + dt * v_grid;
     xi[d] = (x_new - pass.stencil_grid.origin[d]) * pass.stencil_grid.inverse_cell_size[d];
     for (int l = 0; l < W; ++l) {
       v[p + l][d] = lane<W>(v_new, l);
       x[p + l][d] = lane<W>(x_new, l);
+    }
+  }
+  if constexpr (affine) {
+    const auto b = transfer::detail::affine_moment<Record::all>(
+        st, pass.stencil_grid, [&](int l) -> const Vec<Dim>& { return start[p + l]; },
+        pass.records);
+    auto& moment = particles.template get<particles::field::AffineMoment<Dim>>();
+    for (int l = 0; l < W; ++l) {
+      for (int i = 0; i < Dim; ++i) {
+        for (int j = 0; j < Dim; ++j) moment[p + l](i, j) = lane<W>(b[i][j], l);
+      }
     }
   }
   constexpr bool packed = with_stress_update && packed_stress_update<State, W>;
@@ -105,7 +129,9 @@ COSMPM_ALWAYS_INLINE void map_from_grid(State& s, Index p, const auto& pass, Ind
         spin_grid[k] = lane<W>(grid_values.value[Record::spin + k], l);
         spin_acceleration[k] = lane<W>(grid_values.value[Record::spin_acceleration + k], l);
       }
-      State::continuum_type::update_rotations(particles, q, dt, flip, spin_grid, spin_acceleration);
+      // APIC carries no affine rotation field: the rotations take the grid's (PIC).
+      State::continuum_type::update_rotations(particles, q, dt, affine ? 0.0 : flip, spin_grid,
+                                              spin_acceleration);
     }
     if constexpr (with_stress_update) {
       auto& velocity_gradient =
@@ -147,7 +173,7 @@ COSMPM_ALWAYS_INLINE void map_from_grid(State& s, Index p, const auto& pass, Ind
   }
 }
 
-template <bool with_stress_update, bool pure_flip, class State>
+template <bool with_stress_update, VelocityUpdate update, class State>
 void map_to_particles(State& s, double dt) {
   constexpr int Dim = State::dim;
   require_start_stencils(s, "map_to_particles");
@@ -163,12 +189,11 @@ void map_to_particles(State& s, double dt) {
   const Index packs = count / W;
   COSMPM_OMP_PARALLEL_FOR_MIN(s.threads, count, 128, first_outside, first_bad, first_moved)
   for (Index b = 0; b < packs; ++b) {
-    map_from_grid<W, with_stress_update, pure_flip>(s, b * W, pass, first_outside, first_bad,
-                                                    first_moved);
+    map_from_grid<W, with_stress_update, update>(s, b * W, pass, first_outside, first_bad,
+                                                 first_moved);
   }
   for (Index p = packs * W; p < count; ++p) {
-    map_from_grid<1, with_stress_update, pure_flip>(s, p, pass, first_outside, first_bad,
-                                                    first_moved);
+    map_from_grid<1, with_stress_update, update>(s, p, pass, first_outside, first_bad, first_moved);
   }
   if (first_moved < count) s.blocks.mark_changed();
   // A particle that left the grid usually also tore its neighbourhood: name the cause.
@@ -226,13 +251,17 @@ void handle_stray_particles(State& s) {
 // Pure FLIP (the default) is its own instantiation: its update needs no blend.
 template <class State>
 void map_to_particles(State& s, double dt, bool with_stress_update) {
-  const bool pure_flip = s.parameters.flip_fraction == 1.0;
-  if (with_stress_update) {
-    pure_flip ? detail::map_to_particles<true, true>(s, dt)
-              : detail::map_to_particles<true, false>(s, dt);
+  using detail::VelocityUpdate;
+  const auto run = [&]<VelocityUpdate update>() {
+    with_stress_update ? detail::map_to_particles<true, update>(s, dt)
+                       : detail::map_to_particles<false, update>(s, dt);
+  };
+  if constexpr (State::transfer_type::affine) {
+    run.template operator()<VelocityUpdate::affine>();
+  } else if (s.parameters.flip_fraction == 1.0) {
+    run.template operator()<VelocityUpdate::flip>();
   } else {
-    pure_flip ? detail::map_to_particles<false, true>(s, dt)
-              : detail::map_to_particles<false, false>(s, dt);
+    run.template operator()<VelocityUpdate::blend>();
   }
 }
 
