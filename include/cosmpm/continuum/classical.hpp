@@ -2,11 +2,14 @@
 // The classical (nonpolar) continuum in 2D plane strain: which fields a particle carries, how
 // its stress is updated from the velocity gradient of a step, and how it loads the grid. It
 // has no degrees of freedom besides the translations, so every rotational term of the
-// continuum contract (continuum/concept.hpp) is empty.
+// continuum contract (continuum/concept.hpp) is empty. AntiLocking (continuum/
+// antilocking.hpp) chooses how the volumetric strain rate is formed:
+//   continuum::Classical<material::MohrCoulomb<>, antilocking::FBar>
 #include <array>
 #include <limits>
 #include <span>
 
+#include "cosmpm/continuum/antilocking.hpp"
 #include "cosmpm/continuum/objective_update.hpp"
 #include "cosmpm/continuum/particle_fields.hpp"
 #include "cosmpm/continuum/rates.hpp"
@@ -17,10 +20,11 @@
 
 namespace cosmpm::continuum {
 
-template <material::ConstitutiveModel Model>
+template <material::ConstitutiveModel Model, class AntiLocking = antilocking::None>
 requires(!Model::is_cosserat) class Classical {
  public:
   using model_type = Model;
+  using antilocking_type = AntiLocking;
   using stress_type = typename Model::stress_type;
   using strain_type = typename Model::strain_type;
   using state_type = typename Model::state_type;

@@ -77,6 +77,7 @@ struct EngineState {
   // Particle positions in cell units at the last map_to_grid: the stencils of the step.
   std::vector<Vec<Dim>> stencil_cells;
   std::vector<rates_type> particle_rates;  // MUSL/USF: between rates and stress update
+  std::vector<double> cell_sums;           // antilocking::FBar: per-cell volume sums
 
   const model_type& model() const { return continuum.model(); }
   double empty_node_mass() const {

@@ -252,9 +252,11 @@ void handle_stray_particles(State& s) {
 template <class State>
 void map_to_particles(State& s, double dt, bool with_stress_update) {
   using detail::VelocityUpdate;
+  // Averaging the volumetric rate over cells needs every particle's rate first: no fusion.
+  const bool fused = with_stress_update && !averages_volume<State>;
   const auto run = [&]<VelocityUpdate update>() {
-    with_stress_update ? detail::map_to_particles<true, update>(s, dt)
-                       : detail::map_to_particles<false, update>(s, dt);
+    fused ? detail::map_to_particles<true, update>(s, dt)
+          : detail::map_to_particles<false, update>(s, dt);
   };
   if constexpr (State::transfer_type::affine) {
     run.template operator()<VelocityUpdate::affine>();
@@ -262,6 +264,10 @@ void map_to_particles(State& s, double dt, bool with_stress_update) {
     run.template operator()<VelocityUpdate::flip>();
   } else {
     run.template operator()<VelocityUpdate::blend>();
+  }
+  if (with_stress_update && !fused) {
+    velocity_gradient_from_grid(s, s.nodes.velocity, s.nodes.spin);
+    update_stress(s, dt);
   }
 }
 
