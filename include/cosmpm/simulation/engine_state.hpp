@@ -78,6 +78,7 @@ struct EngineState {
   std::vector<Vec<Dim>> stencil_cells;
   std::vector<rates_type> particle_rates;  // MUSL/USF: between rates and stress update
   std::vector<double> cell_sums;           // antilocking::FBar: per-cell volume sums
+  std::vector<unsigned char> imposed;      // components the face conditions imposed, per node
 
   const model_type& model() const { return continuum.model(); }
   double empty_node_mass() const {

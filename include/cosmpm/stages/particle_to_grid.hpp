@@ -317,8 +317,8 @@ void remap_momentum(State& s, double dt) {
       nodes.spin[n * R + k] = records[n * momenta + Dim + k] / nodes.rotational_inertia[n * R + k];
     }
   }
-  correct_contact(s, nodes.velocity, nodes.spin, dt, contact::Phase::remapped_velocity);
-  apply_conditions(s, nodes.velocity, nodes.spin);
+  correct_and_apply_conditions(s, nodes.velocity, nodes.spin, dt,
+                               contact::Phase::remapped_velocity);
 }
 
 }  // namespace cosmpm::stages
