@@ -7,3 +7,4 @@
 #include "cosmpm/material/drucker_prager_matching.hpp"
 #include "cosmpm/material/linear_elastic.hpp"
 #include "cosmpm/material/mohr_coulomb.hpp"
+#include "cosmpm/material/stress_space.hpp"

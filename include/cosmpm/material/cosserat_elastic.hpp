@@ -43,6 +43,7 @@ class CosseratElastic {
   using tangent_type = Eigen::Matrix<T, 7, 7>;
   using parameters_type = CosseratElasticParameters;
   static constexpr bool is_cosserat = true;
+  static constexpr int dimension = 2;  // plane strain only (issue 18 leaves 3D Cosserat out)
 
   explicit CosseratElastic(const CosseratElasticParameters& parameters)
       : parameters_(checked(parameters)),

@@ -1,6 +1,7 @@
 #pragma once
-// Perfectly plastic Drucker-Prager with non-associated flow and an apex return, plane strain
-// with sigma_zz carried. Tension positive, p = tr(sigma) / 3, q = sqrt(J2) = sqrt(s:s / 2):
+// Perfectly plastic Drucker-Prager with non-associated flow and an apex return, in plane strain
+// with sigma_zz carried (Dim = 2) or in 3D (Dim = 3); component order in stress_space.hpp.
+// Tension positive, p = tr(sigma) / 3, q = sqrt(J2) = sqrt(s:s / 2):
 //   f = q + alpha p - k,   g = q + beta p,
 // alpha, beta and k from the Mohr-Coulomb phi, psi and c by a DruckerPragerMatching
 // (drucker_prager_matching.hpp).
@@ -12,6 +13,7 @@
 #include "cosmpm/material/detail/isotropic_elasticity.hpp"
 #include "cosmpm/material/detail/parameter_checks.hpp"
 #include "cosmpm/material/drucker_prager_matching.hpp"
+#include "cosmpm/material/stress_space.hpp"
 
 namespace cosmpm::material {
 
@@ -26,16 +28,19 @@ struct DruckerPragerParameters {
   DruckerPragerMatching matching = DruckerPragerMatching::plane_strain;
 };
 
-template <class T = double>
+template <class T = double, int Dim = 2>
 class DruckerPrager {
+  static constexpr int n = symmetric_components<Dim>;
+
  public:
   using scalar_type = T;
-  using stress_type = SymTensor2D<T>;  // [xx, yy, zz, xy], tension positive
-  using strain_type = SymTensor2D<T>;  // [dxx, dyy, dzz, dxy], tensor shear
+  using stress_type = SymmetricTensor<Dim, T>;  // [xx, yy, zz, xy(, xz, yz)], tension positive
+  using strain_type = SymmetricTensor<Dim, T>;  // tensor shear
   using state_type = PlasticState;
-  using tangent_type = Eigen::Matrix<T, 4, 4>;
+  using tangent_type = Eigen::Matrix<T, n, n>;
   using parameters_type = DruckerPragerParameters;
   static constexpr bool is_cosserat = false;
+  static constexpr int dimension = Dim;
 
   explicit DruckerPrager(const DruckerPragerParameters& parameters)
       : parameters_(checked(parameters)),
@@ -64,7 +69,8 @@ class DruckerPrager {
   // f = q + alpha p - k in Pa; <= 0 inside.
   T yield_function(const stress_type& stress) const {
     const T p = (stress[0] + stress[1] + stress[2]) / 3;
-    const Vec4 s(stress[0] - p, stress[1] - p, stress[2] - p, stress[3]);
+    Vec s = stress;
+    for (int i = 0; i < 3; ++i) s[i] = stress[i] - p;
     return invariant_q(s) + coefficients_.alpha * p - coefficients_.k;
   }
 
@@ -76,13 +82,15 @@ class DruckerPrager {
     update_impl<true>(stress, state, de, &tangent);
   }
 
-  tangent_type elastic_tangent() const { return elastic_.template tangent<4>(); }
+  tangent_type elastic_tangent() const { return elastic_.template tangent<n>(); }
 
  private:
-  using Vec4 = Eigen::Matrix<T, 4, 1>;
-  // q = sqrt(J2) of a deviator stored [xx, yy, zz, xy]: the shear counts twice in s:s.
-  static T invariant_q(const Vec4& s) {
-    return std::sqrt((s[0] * s[0] + s[1] * s[1] + s[2] * s[2]) / 2 + s[3] * s[3]);
+  using Vec = Eigen::Matrix<T, n, 1>;
+  // q = sqrt(J2) of a deviator stored [xx, yy, zz, shears]: each shear counts twice in s:s.
+  static T invariant_q(const Vec& s) {
+    T q2 = (s[0] * s[0] + s[1] * s[1] + s[2] * s[2]) / 2;
+    for (int c = 3; c < n; ++c) q2 += s[c] * s[c];
+    return std::sqrt(q2);
   }
 
   static const DruckerPragerParameters& checked(const DruckerPragerParameters& p) {
@@ -100,13 +108,14 @@ class DruckerPrager {
                    tangent_type* tangent) const {
     const T shear = elastic_.shear;
     const T bulk = elastic_.bulk();
-    const auto t = elastic_.template trial<4>(stress, de);
+    const auto t = elastic_.template trial<n>(stress, de);
     const T p_trial = (t[0] + t[1] + t[2]) / 3;
-    const Vec4 s_trial(t[0] - p_trial, t[1] - p_trial, t[2] - p_trial, t[3]);
+    Vec s_trial;
+    for (int c = 0; c < n; ++c) s_trial[c] = c < 3 ? t[c] - p_trial : t[c];
     const T q_trial = invariant_q(s_trial);
     const T f_trial = q_trial + coefficients_.alpha * p_trial - coefficients_.k;
     if (f_trial <= T(0)) {
-      stress = Vec4(t[0], t[1], t[2], t[3]);
+      for (int c = 0; c < n; ++c) stress[c] = t[c];
       state.plastic = 0.0;
       if constexpr (WithTangent) *tangent = elastic_tangent();
       return;
@@ -119,29 +128,30 @@ class DruckerPrager {
       const T scale = 1 - shear * multiplier / q_trial;
       const T p = p_trial - bulk * coefficients_.beta * multiplier;
       for (int i = 0; i < 3; ++i) stress[i] = scale * s_trial[i] + p;
-      stress[3] = scale * s_trial[3];
+      for (int c = 3; c < n; ++c) stress[c] = scale * s_trial[c];
       // Equivalent plastic shear strain sqrt(2 e:e) of d eps_p = multiplier (s / 2q + ...).
       state.plastic_shear_strain += static_cast<double>(multiplier);
       if constexpr (WithTangent) {
-        const Vec4 n = s_trial / q_trial;  // unit in the sense q(n) = 1
-        const Vec4 n_contract(n[0], n[1], n[2], 2 * n[3]);
-        const Vec4 ones(1, 1, 1, 0);
-        const Vec4 d_multiplier =
-            (shear * n_contract + coefficients_.alpha * bulk * ones) / hardness;
+        const Vec normal = s_trial / q_trial;  // unit in the sense q(normal) = 1
+        Vec contract = normal;                 // normal . de counts each tensor shear twice
+        for (int c = 3; c < n; ++c) contract[c] = 2 * normal[c];
+        Vec ones = Vec::Zero();
+        ones.template head<3>().setOnes();
+        const Vec d_multiplier = (shear * contract + coefficients_.alpha * bulk * ones) / hardness;
         tangent_type deviatoric = tangent_type::Zero();
         for (int i = 0; i < 3; ++i)
           for (int j = 0; j < 3; ++j) deviatoric(i, j) = (i == j ? T(1) : T(0)) - T(1) / 3;
-        deviatoric(3, 3) = 1;
+        for (int c = 3; c < n; ++c) deviatoric(c, c) = 1;
         *tangent = scale * 2 * shear * deviatoric +
-                   (shear * shear * multiplier / q_trial) * n * n_contract.transpose() -
-                   shear * n * d_multiplier.transpose() + bulk * ones * ones.transpose() -
+                   (shear * shear * multiplier / q_trial) * normal * contract.transpose() -
+                   shear * normal * d_multiplier.transpose() + bulk * ones * ones.transpose() -
                    bulk * coefficients_.beta * ones * d_multiplier.transpose();
       }
       return;
     }
     // Apex: hydrostatic stress at c cot(phi); the whole trial deviator is plastic.
     const T apex = apex_pressure();
-    stress = Vec4(apex, apex, apex, 0);
+    for (int c = 0; c < n; ++c) stress[c] = c < 3 ? apex : T(0);
     state.plastic_shear_strain += static_cast<double>(q_trial / shear);
     if constexpr (WithTangent) tangent->setZero();
   }
@@ -153,5 +163,6 @@ class DruckerPrager {
 
 static_assert(ConstitutiveModel<DruckerPrager<double>>);
 static_assert(HasConsistentTangent<DruckerPrager<double>>);
+static_assert(HasConsistentTangent<DruckerPrager<double, 3>>);
 
 }  // namespace cosmpm::material

@@ -1,12 +1,13 @@
 #pragma once
-// Isotropic linear elasticity in plane strain with sigma_zz carried.
+// Isotropic linear elasticity, in plane strain with sigma_zz carried (Dim = 2) or in 3D
+// (Dim = 3); component order in stress_space.hpp.
 #include <Eigen/Core>
-#include <cstddef>
 
 #include "cosmpm/core/types.hpp"
 #include "cosmpm/material/concept.hpp"
 #include "cosmpm/material/detail/isotropic_elasticity.hpp"
 #include "cosmpm/material/detail/parameter_checks.hpp"
+#include "cosmpm/material/stress_space.hpp"
 
 namespace cosmpm::material {
 
@@ -16,16 +17,19 @@ struct LinearElasticParameters {
   double poisson_ratio = detail::unset;   // nu, -1 < nu < 0.5
 };
 
-template <class T = double>
+template <class T = double, int Dim = 2>
 class LinearElastic {
+  static constexpr int n = symmetric_components<Dim>;
+
  public:
   using scalar_type = T;
-  using stress_type = SymTensor2D<T>;
-  using strain_type = SymTensor2D<T>;  // [dxx, dyy, dzz, dxy], tensor shear
+  using stress_type = SymmetricTensor<Dim, T>;  // [xx, yy, zz, xy(, xz, yz)]
+  using strain_type = SymmetricTensor<Dim, T>;  // tensor shear
   using state_type = NoState;
-  using tangent_type = Eigen::Matrix<T, 4, 4>;
+  using tangent_type = Eigen::Matrix<T, n, n>;
   using parameters_type = LinearElasticParameters;
   static constexpr bool is_cosserat = false;
+  static constexpr int dimension = Dim;
 
   explicit LinearElastic(const LinearElasticParameters& parameters)
       : parameters_(checked(parameters)),
@@ -54,15 +58,13 @@ class LinearElastic {
   // vector or on arrays of packs that hold one component of several points each.
   template <class Stress, class Increment>
   void update_values(Stress& stress, const Increment& de) const {
-    const auto trial = elastic_.template trial<components>(stress, de);
-    for (std::size_t i = 0; i < components; ++i) stress[i] = trial[i];
+    const auto trial = elastic_.template trial<n>(stress, de);
+    for (int i = 0; i < n; ++i) stress[i] = trial[i];
   }
 
-  tangent_type elastic_tangent() const { return elastic_.template tangent<4>(); }
+  tangent_type elastic_tangent() const { return elastic_.template tangent<n>(); }
 
  private:
-  static constexpr std::size_t components = 4;
-
   static const LinearElasticParameters& checked(const LinearElasticParameters& p) {
     detail::require_set("LinearElastic", "LinearElasticParameters",
                         {{"youngs_modulus", p.youngs_modulus}, {"poisson_ratio", p.poisson_ratio}});
@@ -76,5 +78,7 @@ class LinearElastic {
 static_assert(ConstitutiveModel<LinearElastic<double>>);
 static_assert(HasConsistentTangent<LinearElastic<double>>);
 static_assert(HasPackedUpdate<LinearElastic<double>, double>);
+static_assert(ConstitutiveModel<LinearElastic<double, 3>>);
+static_assert(HasPackedUpdate<LinearElastic<double, 3>, double>);
 
 }  // namespace cosmpm::material

@@ -1,17 +1,24 @@
 #pragma once
-// Perfectly plastic Mohr-Coulomb in plane strain with sigma_zz carried, non-associated flow and a
-// tension cut-off. The return is exact (no iteration, no drift): it is done in principal-stress
-// space (detail/mohr_coulomb_return.hpp, after Clausen, Damkilde and Andersen 2006, 2007), and
-// the stress is rotated back with the trial eigenvectors. See docs/theory/materials.md.
+// Perfectly plastic Mohr-Coulomb with non-associated flow and a tension cut-off, in plane strain
+// with sigma_zz carried (Dim = 2) or in 3D (Dim = 3); component order in stress_space.hpp. The
+// return is exact (no iteration, no drift): it is done in principal-stress space
+// (detail/mohr_coulomb_return.hpp, after Clausen, Damkilde and Andersen 2006, 2007), the same
+// code in both dimensions, and the stress is rotated back with the trial eigenvectors. See
+// docs/theory/materials.md.
 //
 // Tension positive. Principal stresses sorted s1 >= s2 >= s3 (s3 the most compressive):
 //   f = (s1 - s3) + (s1 + s3) sin(phi) - 2 c cos(phi)        (yield_function, Pa)
 //   g = m s1 - s3,  m = (1 + sin psi) / (1 - sin psi)
-// sigma_zz is principal in plane strain, so the split is the closed-form in-plane 2x2 problem.
+// The split into principal values: sigma_zz is principal in plane strain, so there it is the
+// closed-form in-plane 2x2 problem (detail/principal_2d.hpp); in 3D the symmetric 3x3
+// eigenproblem (detail/principal_3d.hpp), skipped for trials inside the Drucker-Prager cone
+// inscribed in the yield surface.
 #include <Eigen/Core>
 #include <algorithm>
+#include <array>
 #include <cmath>
 #include <optional>
+#include <type_traits>
 
 #include "cosmpm/core/error.hpp"
 #include "cosmpm/core/types.hpp"
@@ -20,6 +27,8 @@
 #include "cosmpm/material/detail/mohr_coulomb_return.hpp"
 #include "cosmpm/material/detail/parameter_checks.hpp"
 #include "cosmpm/material/detail/principal_2d.hpp"
+#include "cosmpm/material/detail/principal_3d.hpp"
+#include "cosmpm/material/stress_space.hpp"
 
 namespace cosmpm::material {
 
@@ -35,16 +44,21 @@ struct MohrCoulombParameters {
   std::optional<double> tension_cutoff = std::nullopt;
 };
 
-template <class T = double>
+template <class T = double, int Dim = 2>
 class MohrCoulomb {
+  static constexpr int n = symmetric_components<Dim>;
+  // The split of a trial stress into sorted principal values and back.
+  using Split = std::conditional_t<Dim == 2, detail::PlaneStrainSplit<T>, detail::Spectral3D<T>>;
+
  public:
   using scalar_type = T;
-  using stress_type = SymTensor2D<T>;  // [xx, yy, zz, xy], tension positive
-  using strain_type = SymTensor2D<T>;  // [dxx, dyy, dzz, dxy], tensor shear
+  using stress_type = SymmetricTensor<Dim, T>;  // [xx, yy, zz, xy(, xz, yz)], tension positive
+  using strain_type = SymmetricTensor<Dim, T>;  // tensor shear
   using state_type = PlasticState;
-  using tangent_type = Eigen::Matrix<T, 4, 4>;
+  using tangent_type = Eigen::Matrix<T, n, n>;
   using parameters_type = MohrCoulombParameters;
   static constexpr bool is_cosserat = false;
+  static constexpr int dimension = Dim;
 
   explicit MohrCoulomb(const MohrCoulombParameters& parameters)
       : parameters_(checked(parameters)),
@@ -96,11 +110,12 @@ class MohrCoulomb {
   // f = (s1 - s3) + (s1 + s3) sin(phi) - 2 c cos(phi) in Pa; <= 0 inside. With a tension
   // cut-off below the apex, the larger of f and s1 - cut-off.
   T yield_function(const stress_type& stress) const {
-    const auto spectrum = detail::plane_strain_spectrum(stress[0], stress[1], stress[2], stress[3]);
-    const auto sorted = spectrum.sorted();
-    const T f =
-        (sorted[0] - sorted[2]) + (sorted[0] + sorted[2]) * sin_phi_ - 2 * cohesion() * cos_phi_;
-    return return_.has_cutoff() ? std::max(f, sorted[0] - return_.cutoff()) : f;
+    std::array<T, n> components;
+    for (int c = 0; c < n; ++c) components[c] = stress[c];
+    const Split split(components);
+    const T f = (split.s1() - split.s3()) + (split.s1() + split.s3()) * sin_phi_ -
+                2 * cohesion() * cos_phi_;
+    return return_.has_cutoff() ? std::max(f, split.s1() - return_.cutoff()) : f;
   }
 
   void update(stress_type& stress, state_type& state, const strain_type& de) const {
@@ -116,7 +131,7 @@ class MohrCoulomb {
     return update_impl<false>(stress, state, de, nullptr);
   }
 
-  tangent_type elastic_tangent() const { return elastic_.template tangent<4>(); }
+  tangent_type elastic_tangent() const { return elastic_.template tangent<n>(); }
 
   // The principal-space return on its own: `trial` sorted descending, result sorted likewise.
   // `map` (optional) receives d result / d trial. Exposed for tests.
@@ -156,29 +171,30 @@ class MohrCoulomb {
     return p;
   }
 
-  // The one stress update: trial, closed-form split, principal return, rotation back, and
-  // (WithTangent) the consistent tangent. With a cut-off below the apex the same code runs
-  // out of line (Cutoff = true), so that the common case holds no call.
+  // The one stress update: trial, split into principal values, principal return, rotation
+  // back, and (WithTangent) the consistent tangent. With a cut-off below the apex the same code
+  // runs out of line (Cutoff = true), so that the common case holds no call.
   template <bool WithTangent, bool Cutoff = false>
   MohrCoulombRegion update_impl(stress_type& stress, state_type& state, const strain_type& de,
                                 tangent_type* tangent) const {
-    const auto t = elastic_.template trial<4>(stress, de);
-    const T xx = t[0], yy = t[1], zz = t[2], xy = t[3];
-    const T mean = (xx + yy) / 2;
-    const T half = (xx - yy) / 2;
-    const T radius = std::sqrt(half * half + xy * xy);
-    const T a = mean + radius;
-    const T b = mean - radius;
-    const T s1 = std::max(a, zz);
-    const T s2 = std::min(std::max(zz, b), a);
-    const T s3 = std::min(b, zz);
-    const T f = return_.yield(s1, s3);
-    if (return_.is_elastic(s1, f)) {
-      stress = stress_type(xx, yy, zz, xy);
+    const auto t = elastic_.template trial<n>(stress, de);
+    const auto elastic_step = [&] {
+      for (int c = 0; c < n; ++c) stress[c] = t[c];
       state.plastic = 0.0;
       if constexpr (WithTangent) *tangent = elastic_tangent();
       return MohrCoulombRegion::elastic;
+    };
+    if constexpr (Dim == 3) {
+      // Most points of a 3D run lie well inside: no eigenproblem for them.
+      const T p = (t[0] + t[1] + t[2]) / 3;
+      const T j2 =
+          ((t[0] - p) * (t[0] - p) + (t[1] - p) * (t[1] - p) + (t[2] - p) * (t[2] - p)) / 2 +
+          t[3] * t[3] + t[4] * t[4] + t[5] * t[5];
+      if (return_.inside_inscribed_cone(p, j2)) return elastic_step();
     }
+    const Split split(t);
+    const T f = return_.yield(split.s1(), split.s3());
+    if (return_.is_elastic(split.s1(), f)) return elastic_step();
     if constexpr (!Cutoff) {
       if (return_.has_cutoff()) [[unlikely]]
         return update_with_cutoff<WithTangent>(stress, state, de, tangent);
@@ -186,41 +202,12 @@ class MohrCoulomb {
     T r1, r2, r3, gamma;
     Mat3 sorted_map;
     const MohrCoulombRegion region = return_.template plastic_return<WithTangent, Cutoff>(
-        s1, s2, s3, f, r1, r2, r3, gamma, WithTangent ? &sorted_map : nullptr);
-    // Back to (a, b, zz) by the rank sigma_zz had (sorted[i] = natural[order[i]]), then rotate
-    // with the trial directions.
-    T na, nb, nz;
-    int zz_rank;
-    if (zz >= a) {
-      nz = r1, na = r2, nb = r3, zz_rank = 0;
-    } else if (zz >= b) {
-      na = r1, nz = r2, nb = r3, zz_rank = 1;
-    } else {
-      na = r1, nb = r2, nz = r3, zz_rank = 2;
-    }
-    const T ratio = radius > T(0) ? (na - nb) / (2 * radius) : T(0);
-    const T new_mean = (na + nb) / 2;
-    stress = stress_type(new_mean + half * ratio, new_mean - half * ratio, nz, xy * ratio);
+        split.s1(), split.s2(), split.s3(), f, r1, r2, r3, gamma,
+        WithTangent ? &sorted_map : nullptr);
+    stress = split.back(r1, r2, r3);
     state.plastic_shear_strain += static_cast<double>(gamma);
     state.plastic = 1.0;
-    if constexpr (WithTangent) {
-      static constexpr int orders[3][3] = {{2, 0, 1}, {0, 2, 1}, {0, 1, 2}};
-      const int* order = orders[zz_rank];
-      Mat3 natural_map;
-      for (int i = 0; i < 3; ++i)
-        for (int j = 0; j < 3; ++j) natural_map(order[i], order[j]) = sorted_map(i, j);
-      Mat3 elastic_principal = Mat3::Constant(elastic_.lambda);
-      elastic_principal.diagonal().array() += 2 * elastic_.shear;
-      // Equal in-plane trial eigenvalues: the ratio's limit is the map's derivative along a - b.
-      const T shear_ratio =
-          2 * radius > T(1e-12) * std::max(std::abs(a), T(1))
-              ? ratio
-              : (natural_map(0, 0) - natural_map(0, 1) - natural_map(1, 0) + natural_map(1, 1)) / 2;
-      const T cos_2theta = radius > T(0) ? half / radius : T(1);
-      const T sin_2theta = radius > T(0) ? xy / radius : T(0);
-      *tangent = detail::spectral_tangent<T>(natural_map * elastic_principal, elastic_.shear,
-                                             shear_ratio, cos_2theta, sin_2theta);
-    }
+    if constexpr (WithTangent) *tangent = split.tangent(sorted_map, elastic_, r1, r2, r3);
     return region;
   }
 
@@ -240,5 +227,6 @@ class MohrCoulomb {
 
 static_assert(ConstitutiveModel<MohrCoulomb<double>>);
 static_assert(HasConsistentTangent<MohrCoulomb<double>>);
+static_assert(HasConsistentTangent<MohrCoulomb<double, 3>>);
 
 }  // namespace cosmpm::material

@@ -77,6 +77,11 @@ class MohrCoulombReturn {
       const Vec3 e = Vec3::Unit(i);
       cutoff_planes_.add(e, cutoff, elastic_times(e));
     }
+    // With the Lode angle t, s1 = p + 2 sqrt(J2 / 3) cos t and s3 = p + 2 sqrt(J2 / 3)
+    // cos(t + 2 pi / 3), so k s1 - s3 <= (k - 1) p + 2 sqrt((k^2 + k + 1) / 3) sqrt(J2) for every
+    // t: the Drucker-Prager cone inscribed in the yield surface (it touches the yield plane
+    // where tan t = sqrt3 / (2 k + 1)).
+    inscribed_slope_ = 2 * std::sqrt((k * k + k + 1) / 3);
   }
 
   T apex() const { return apex_; }
@@ -85,6 +90,13 @@ class MohrCoulombReturn {
 
   // k s1 - s3 - 2 c sqrt(k) of sorted principal stresses.
   T yield(T s1, T s3) const { return k_ * s1 - s3 - offset_; }
+  // Whether a trial of mean stress p and second deviatoric invariant J2 lies inside the cone
+  // inscribed in the yield surface (and below the cut-off): elastic for sure, without its
+  // principal values.
+  bool inside_inscribed_cone(T p, T j2) const {
+    return (k_ - 1) * p + inscribed_slope_ * std::sqrt(j2) - offset_ <= T(0) &&
+           (!has_cutoff_ || p + 2 * std::sqrt(j2 / 3) <= cutoff_);
+  }
   // Whether the sorted trial with f = yield(s1, s3) is elastic.
   bool is_elastic(T s1, T f) const { return f <= T(0) && (!has_cutoff_ || s1 <= cutoff_); }
 
@@ -186,6 +198,7 @@ class MohrCoulombReturn {
   Vec3 normal_ = Vec3::Zero();
   Vec3 plane_step_ = Vec3::Zero();
   T plane_gamma_{};
+  T inscribed_slope_{};
   Vec3 edge_c_direction_ = Vec3::Zero(), edge_c_scaled_normal_ = Vec3::Zero();
   Vec3 edge_e_direction_ = Vec3::Zero(), edge_e_scaled_normal_ = Vec3::Zero();
   PlaneSet<T> cutoff_planes_;
