@@ -10,12 +10,14 @@
 #include <string>
 #include <vector>
 
+#include "batch_run.hpp"
 #include "cosmpm/material.hpp"
 
 namespace {
 
 using namespace cosmpm::material;
 using Vec6 = SymmetricTensor<3, double>;
+using cosmpm::material::benchmarks::run;
 
 constexpr std::size_t kCount = 4096;
 constexpr double kE = 2.76e6, kNu = 0.2, kPhi = 26.0, kPsi = 2.0;  // corn, Table 1
@@ -30,7 +32,8 @@ struct Batch3D {
 
 // Old stresses of a few kPa compression (K0 in [0.3, 1]) with shears of a tenth of it, in a
 // random frame; increments of up to 4e-4 strain (the plane-strain benchmark's, in all six
-// components); `mix` selects the Mohr-Coulomb region of the trial by rejection.
+// components); `mix` selects the Mohr-Coulomb region of the trial by rejection. Timed as the
+// plane-strain kernels are (batch_run.hpp).
 Batch3D batch_3d(Mix mix) {
   const MohrCoulomb<double, 3> mc(kE, kNu, kPhi, kPsi);
   std::mt19937_64 rng(2014);
@@ -71,29 +74,15 @@ Batch3D batch_3d(Mix mix) {
 const char* const kMixNames[] = {"mixed",          "elastic", "plane", "compression_edge",
                                  "extension_edge", "apex"};
 
-template <class Model, class State>
-void run(benchmark::State& bench, const Model& model, Batch3D& batch, std::vector<State>& state) {
-  const Vec6* const old = batch.old.data();
-  Vec6* const work = batch.work.data();
-  State* const st = state.data();
-  const Vec6* const increment = batch.increment.data();
-  for (auto _ : bench) {
-    for (std::size_t i = 0; i < kCount; ++i) {
-      work[i] = old[i];
-      model.update(work[i], st[i], increment[i]);
-    }
-    benchmark::DoNotOptimize(work);
-    benchmark::ClobberMemory();
-  }
-  bench.counters["ns_per_call"] =
-      benchmark::Counter(double(bench.iterations()) * double(kCount),
-                         benchmark::Counter::kIsRate | benchmark::Counter::kInvert);
-}
-
 void BM_3D_LinearElastic(benchmark::State& bench) {
   static auto batch = batch_3d(Mix::mixed);
-  std::vector<NoState> state(kCount);
-  run(bench, LinearElastic<double, 3>(kE, kNu), batch, state);
+  struct {
+    std::vector<Vec6>& old;
+    std::vector<Vec6>& work;
+    std::vector<Vec6>& increment;
+    std::vector<NoState> state;
+  } view{batch.old, batch.work, batch.increment, std::vector<NoState>(kCount)};
+  run(bench, LinearElastic<double, 3>(kE, kNu), view);
 }
 
 void BM_3D_MohrCoulomb(benchmark::State& bench) {
@@ -101,12 +90,12 @@ void BM_3D_MohrCoulomb(benchmark::State& bench) {
   auto batch = batch_3d(static_cast<Mix>(index));
   bench.SetLabel(std::string(kMixNames[index]) + ", plastic fraction " +
                  std::to_string(batch.plastic_fraction));
-  run(bench, MohrCoulomb<double, 3>(kE, kNu, kPhi, kPsi), batch, batch.state);
+  run(bench, MohrCoulomb<double, 3>(kE, kNu, kPhi, kPsi), batch);
 }
 
 void BM_3D_DruckerPrager(benchmark::State& bench) {
   auto batch = batch_3d(Mix::mixed);
-  run(bench, DruckerPrager<double, 3>(kE, kNu, kPhi, kPsi), batch, batch.state);
+  run(bench, DruckerPrager<double, 3>(kE, kNu, kPhi, kPsi), batch);
 }
 
 }  // namespace
