@@ -5,4 +5,6 @@
 using namespace cosmpm;
 using Wrong = Simulation<2, shape::Linear, continuum::Classical<material::LinearElastic<>>,
                          contact::SingleField, integrator::MUSL, transfer::APIC>;
-int main() { return sizeof(Wrong) > 0 ? 0 : 1; }
+int main() {
+  return sizeof(Wrong) > 0 ? 0 : 1;
+}

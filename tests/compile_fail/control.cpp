@@ -9,4 +9,6 @@ struct WithAdvance {
 };
 using Right = Simulation<2, shape::CubicBSpline, continuum::Classical<material::MohrCoulomb<>>,
                          WithAdvance, integrator::MUSL, transfer::APIC>;
-int main() { return sizeof(Right) > 0 ? 0 : 1; }
+int main() {
+  return sizeof(Right) > 0 ? 0 : 1;
+}

@@ -21,7 +21,7 @@
 namespace cosmpm::continuum {
 
 template <material::ConstitutiveModel Model, class AntiLocking = antilocking::None>
-requires(!Model::is_cosserat) class Classical {
+requires(!Model::is_cosserat && material::dimension_of<Model> == 2) class Classical {
  public:
   using model_type = Model;
   using antilocking_type = AntiLocking;
@@ -71,14 +71,11 @@ requires(!Model::is_cosserat) class Classical {
     strain[3] += increment[3];
   }
 
-  // Whether the model updates several points at once on packs of their components
-  // (update_values; LinearElastic does): the engine's grid-to-particle loop then runs the
-  // whole stress update side by side for W particles.
+  // Whether the model updates several points at once on packs of their components (the
+  // material concept's packed hook; LinearElastic has it): the engine's grid-to-particle loop
+  // then runs the whole stress update side by side for W particles.
   template <class Value>
-  static constexpr bool updates_values = requires(const Model& model, std::array<Value, 4>& stress,
-                                                  const std::array<Value, 4>& de) {
-    model.update_values(stress, de);
-  };
+  static constexpr bool updates_values = material::HasPackedUpdate<Model, Value>;
 
   // update_stress for W particles at once: lane l of every value belongs to particle l, L the
   // velocity gradient, `strain` the accumulated strain (component 2, zz, is not touched).

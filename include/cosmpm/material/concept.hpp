@@ -122,6 +122,17 @@ inline constexpr double batch_rounding = [] {
   }
 }();
 
+// The dimension of a model's stress space: M::dimension, 2 (plane strain) for models that do
+// not say.
+template <class M>
+inline constexpr int dimension_of = [] {
+  if constexpr (requires { M::dimension; }) {
+    return static_cast<int>(M::dimension);
+  } else {
+    return 2;
+  }
+}();
+
 // The check of a batch update's arguments: one size for the stress, state and increment spans.
 inline void require_equal_batch_sizes(std::string_view where, std::size_t stress, std::size_t state,
                                       std::size_t increment) {
