@@ -94,9 +94,21 @@ Outcome run(const flat_blade::Case& c, const fs::path& out) {
   parameters.flip_fraction = c.flip_fraction;
   parameters.cfl = c.cfl;
   parameters.threads = c.threads;
-  if constexpr (polar) parameters.micro_inertia = c.micro_inertia;
-  Sim sim(grid, make_model(c, std::integral_constant<bool, polar>{}), parameters,
-          std::move(blade_contact));
+  using Continuum = typename Sim::continuum_type;
+  const Continuum continuum = [&] {
+    if constexpr (polar) {
+      // Rotation held on the rig floor and sides, as the paper does.
+      using BC = grid::BoundaryConditions<2>;
+      continuum::CosseratSettings settings{.micro_inertia = c.micro_inertia};
+      for (int face : {BC::face(1, false), BC::face(0, false), BC::face(0, true)}) {
+        settings.rotation_fixed[static_cast<std::size_t>(face)] = true;
+      }
+      return Continuum(make_model(c, std::true_type{}), settings);
+    } else {
+      return Continuum(make_model(c, std::false_type{}));
+    }
+  }();
+  Sim sim(grid, continuum, parameters, std::move(blade_contact));
 
   // The soil layer in front of the blade, at rest under K0 = 1 - sin(phi) (Jaky).
   const auto soil =
@@ -121,11 +133,6 @@ Outcome run(const flat_blade::Case& c, const fs::path& out) {
   bc.set(BC::face(1, false), grid::BoundaryKind::fixed);  // rig floor
   bc.set(BC::face(0, false), grid::BoundaryKind::roller);
   bc.set(BC::face(0, true), grid::BoundaryKind::roller);
-  if constexpr (polar) {
-    for (int face : {BC::face(1, false), BC::face(0, false), BC::face(0, true)}) {
-      bc.set_rotation_fixed(face, true);
-    }
-  }
 
   // The reference: Sokolovski's passive pressure on a vertical wall of height h.
   const auto reference = analysis::sokolovski_passive({.friction_angle_deg = c.friction_angle_deg,
