@@ -615,7 +615,9 @@ int run_flat_blade(const Config& c, const fs::path& out, const Law& contact_law)
       reference_dem.horizontal_force_per_width);
   std::printf("  average vertical force: %.1f N/m (Sokolovski %.1f N/m)\n", vertical,
               reference.vertical_force_per_width);
-  std::printf("results in %s\n", out.c_str());
+  std::printf(
+      "results in %s: forces.csv, blade_stress.csv, summary.csv, frames/dem_flat_blade.xdmf\n",
+      out.c_str());
   return 0;
 }
 
@@ -664,7 +666,7 @@ int run_biaxial(const Config& c, const fs::path& out, const Law& contact_law) {
       "critical state %.1f deg (dilatancy %.3f); %.1f s\n",
       result.porosity, result.peak_angle_deg, 100 * result.peak_strain, result.critical_angle_deg,
       result.critical_dilatancy, seconds);
-  std::printf("results in %s\n", out.c_str());
+  std::printf("results in %s: biaxial.csv, summary.csv\n", out.c_str());
   return 0;
 }
 
