@@ -54,6 +54,17 @@ class RigidContact {
     return static_cast<int>(bodies_.size()) - 1;
   }
 
+  // Nairn, Hammerquist and Smith (2020) correct the start-of-step velocity as well as the
+  // updated one: the trial velocity then starts from a field that does not penetrate, and
+  // the recorded impulse is the step's contact force alone, without the re-correction of a
+  // penetrating velocity the particles carried in. Off by default (the paper's algorithm,
+  // Bardenhagen et al. 2000, corrects the updated velocity only).
+  RigidContact& set_start_of_step_correction(bool on) {
+    start_of_step_correction_ = on;
+    return *this;
+  }
+  bool corrects_start_of_step() const { return start_of_step_correction_; }
+
   int body_count() const { return static_cast<int>(bodies_.size()); }
   const RigidBody<Dim>& body(int b) const { return entry(b).body; }
   RigidBody<Dim>& body(int b) { return entry(b).body; }
@@ -320,6 +331,7 @@ class RigidContact {
   std::vector<Entry> bodies_;
   std::vector<ContactNode<Dim>> records_;
   bool recorded_ = false;
+  bool start_of_step_correction_ = false;
   Vec<Dim> cell_size_ = Vec<Dim>::Ones();
   Vec<Dim> origin_ = Vec<Dim>::Zero();
 };
