@@ -62,6 +62,8 @@ struct Case {
   double cfl = 0.5;
   // Contact also corrects the start-of-step velocity (Nairn, Hammerquist and Smith 2020).
   bool start_of_step_contact = false;
+  // Contact only where the material would reach the blade within the step (gap check).
+  bool gap_check = false;
   double frame_interval = 0.005;  // m of blade travel between ParaView frames
   double average_from = 0.015;    // m: the paper averages the draft over 15-35 mm
   double average_to = 0.035;
@@ -81,6 +83,7 @@ struct Case {
     if (polar && cone != "plane-strain-per-angle") name << "_" << cone;
     if (floor == "friction") name << "_floor" << floor_friction_deg;
     if (start_of_step_contact) name << "_startcontact";
+    if (gap_check) name << "_gapcheck";
     return name.str();
   }
 };
@@ -124,6 +127,7 @@ class Parser {
     };
     number("floor-friction", c.floor_friction_deg);
     flag("start-of-step-contact", c.start_of_step_contact);
+    flag("gap-check", c.gap_check);
     flag("polar", c.polar);
     number("gc-over-g", c.cosserat_shear_ratio);
     number("length-scale", c.characteristic_length);

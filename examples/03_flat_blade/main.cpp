@@ -83,6 +83,7 @@ Outcome run(const flat_blade::Case& c, const fs::path& out) {
       [start_time, speed](double t) { return Vec<2>(t < start_time ? 0.0 : speed, 0.0); }));
   contact::RigidContact<2> blade_contact;
   blade_contact.set_start_of_step_correction(c.start_of_step_contact);
+  blade_contact.set_gap_check(c.gap_check);
   blade_contact.add_body(std::move(blade),
                          contact::Interface::coulomb_angle(c.wall_friction_deg)
                              .with_rotation_held(polar && c.blade_rotation_fixed));
@@ -260,6 +261,7 @@ int main(int argc, char** argv) {
       std::printf("  rig floor: Coulomb friction, %g deg\n", c.floor_friction_deg);
     }
     if (c.start_of_step_contact) std::printf("  contact corrects the start-of-step velocity\n");
+    if (c.gap_check) std::printf("  contact checks the gap between blade and particles\n");
     const Outcome o = c.polar ? run<PolarSim>(c, out) : run<NonpolarSim>(c, out);
     const double difference =
         100.0 * (o.average_draft_per_width - o.sokolovski_per_width) / o.sokolovski_per_width;

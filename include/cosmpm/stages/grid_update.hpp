@@ -12,6 +12,7 @@
 #include "cosmpm/core/parallel.hpp"
 #include "cosmpm/core/types.hpp"
 #include "cosmpm/grid/boundary.hpp"
+#include "cosmpm/particles/fields.hpp"
 
 namespace cosmpm::stages {
 
@@ -21,15 +22,19 @@ template <class State>
 contact::GridView<State::dim> contact_view(State& s, std::vector<Vec<State::dim>>& velocity,
                                            std::vector<double>& spin, double dt,
                                            contact::Phase phase) {
-  return {s.grid,
-          s.nodes.mass,
-          velocity,
-          s.empty_node_mass(),
-          dt,
-          s.clock.time,
-          phase,
-          std::span<double>(spin),
-          contact::node_reach<typename State::kernel_type>()};
+  constexpr int Dim = State::dim;
+  contact::GridView<Dim> view{s.grid,
+                              s.nodes.mass,
+                              velocity,
+                              s.empty_node_mass(),
+                              dt,
+                              s.clock.time,
+                              phase,
+                              std::span<double>(spin),
+                              contact::node_reach<typename State::kernel_type>()};
+  view.particle_positions = s.particles.template get<particles::field::Position<Dim>>();
+  view.particle_half_widths = s.particles.template get<particles::field::HalfWidth<Dim>>();
+  return view;
 }
 
 // The grid's face conditions on a velocity field and the continuum's on its rotational rates.
