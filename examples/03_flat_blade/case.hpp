@@ -26,6 +26,11 @@ struct Case {
   double dilatancy_angle_deg = 2.0;  // the paper also runs 10 and 26
   double cohesion = 0.0;             // Pa
   double wall_friction_deg = 14.0;   // corn on steel
+  // The rig floor under the soil: "fixed" (the paper's: no velocity at the floor nodes) or
+  // "friction" (a Coulomb wall, no penetration, friction angle floor_friction_deg), on which
+  // the blade scrapes the floor clean.
+  std::string floor = "fixed";
+  double floor_friction_deg = 14.0;  // steel floor: the blade's corn-on-steel value
   // Cosserat (Table 1): Gc = 2 G, l = 10 mm, J = 0.5 (0.5 l)^2.
   bool polar = false;
   double cosserat_shear_ratio = 2.0;    // Gc / G
@@ -55,6 +60,10 @@ struct Case {
   double damping = 0.0;              // local damping while cutting
   double flip_fraction = 1.0;
   double cfl = 0.5;
+  // Contact also corrects the start-of-step velocity (Nairn, Hammerquist and Smith 2020).
+  bool start_of_step_contact = false;
+  // Contact only where the material would reach the blade within the step (gap check).
+  bool gap_check = false;
   double frame_interval = 0.005;  // m of blade travel between ParaView frames
   double average_from = 0.015;    // m: the paper averages the draft over 15-35 mm
   double average_to = 0.035;
@@ -72,6 +81,9 @@ struct Case {
          << (polar ? "polar" : "nonpolar") << "_psi" << dilatancy_angle_deg;
     if (polar) name << (blade_rotation_fixed ? "_wfixed" : "_wfree");
     if (polar && cone != "plane-strain-per-angle") name << "_" << cone;
+    if (floor == "friction") name << "_floor" << floor_friction_deg;
+    if (start_of_step_contact) name << "_startcontact";
+    if (gap_check) name << "_gapcheck";
     return name.str();
   }
 };
@@ -107,6 +119,15 @@ class Parser {
     number("psi", c.dilatancy_angle_deg);
     number("cohesion", c.cohesion);
     number("delta", c.wall_friction_deg);
+    setters_["floor"] = [&c](const std::string& v, const std::string& where) {
+      if (v != "fixed" && v != "friction") {
+        throw cosmpm::Error(where + ": floor '" + v + "' is not one of fixed, friction");
+      }
+      c.floor = v;
+    };
+    number("floor-friction", c.floor_friction_deg);
+    flag("start-of-step-contact", c.start_of_step_contact);
+    flag("gap-check", c.gap_check);
     flag("polar", c.polar);
     number("gc-over-g", c.cosserat_shear_ratio);
     number("length-scale", c.characteristic_length);
@@ -273,6 +294,7 @@ inline void validate(const Case& c) {
                    Bounds::right_closed);
   require_in_range(where, "profile-at", c.profile_at, 0.0, c.travel, Bounds::right_closed);
   require_in_range(where, "threads", c.threads, 0, 4096, Bounds::closed);
+  require_in_range(where, "floor-friction", c.floor_friction_deg, 0.0, 90.0, Bounds::left_closed);
   if (c.polar) {
     require_positive(where, "gc-over-g", c.cosserat_shear_ratio);
     require_positive(where, "length-scale", c.characteristic_length);

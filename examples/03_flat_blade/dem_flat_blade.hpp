@@ -172,6 +172,7 @@ inline bool parse(Config& c, const std::vector<std::string>& args) {
   real("wall-stiffness", c.wall_stiffness);
   real("delta", c.blade_friction_deg);
   real("floor-friction-deg", c.floor_friction_deg);
+  real("floor-friction", c.floor_friction_deg);  // the MPM runs' name for it
   real("side-friction", c.side_friction);
   real("rig-length", c.rig_length);
   real("rig-height", c.rig_height);

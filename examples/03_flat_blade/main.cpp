@@ -14,6 +14,7 @@
 #include <cstdio>
 #include <filesystem>
 #include <fstream>
+#include <numbers>
 #include <optional>
 #include <string>
 
@@ -82,6 +83,8 @@ Outcome run(const flat_blade::Case& c, const fs::path& out) {
   blade.set_velocity(contact::RigidBody<2>::VelocityLaw(
       [start_time, speed](double t) { return Vec<2>(t < start_time ? 0.0 : speed, 0.0); }));
   contact::RigidContact<2> blade_contact;
+  blade_contact.set_start_of_step_correction(c.start_of_step_contact);
+  blade_contact.set_gap_check(c.gap_check);
   blade_contact.add_body(std::move(blade),
                          contact::Interface::coulomb_angle(c.wall_friction_deg)
                              .with_rotation_held(polar && c.blade_rotation_fixed));
@@ -130,7 +133,12 @@ Outcome run(const flat_blade::Case& c, const fs::path& out) {
   }
   using BC = grid::BoundaryConditions<2>;
   auto& bc = sim.boundary_conditions();
-  bc.set(BC::face(1, false), grid::BoundaryKind::fixed);  // rig floor
+  if (c.floor == "friction") {
+    bc.set(BC::face(1, false), grid::BoundaryKind::friction,
+           std::tan(c.floor_friction_deg * std::numbers::pi / 180.0));
+  } else {
+    bc.set(BC::face(1, false), grid::BoundaryKind::fixed);  // rig floor, the paper's
+  }
   bc.set(BC::face(0, false), grid::BoundaryKind::roller);
   bc.set(BC::face(0, true), grid::BoundaryKind::roller);
 
@@ -251,6 +259,11 @@ int main(int argc, char** argv) {
                 c.polar ? "polar (Cosserat Drucker-Prager)" : "nonpolar (Mohr-Coulomb)",
                 c.soil_depth * 1000, c.cells_x, c.cells_y, c.dilatancy_angle_deg,
                 c.wall_friction_deg);
+    if (c.floor == "friction") {
+      std::printf("  rig floor: Coulomb friction, %g deg\n", c.floor_friction_deg);
+    }
+    if (c.start_of_step_contact) std::printf("  contact corrects the start-of-step velocity\n");
+    if (c.gap_check) std::printf("  contact checks the gap between blade and particles\n");
     const Outcome o = c.polar ? run<PolarSim>(c, out) : run<NonpolarSim>(c, out);
     const double difference =
         100.0 * (o.average_draft_per_width - o.sokolovski_per_width) / o.sokolovski_per_width;
