@@ -7,8 +7,8 @@ usage: /usr/bin/python3 scripts/plot_granular_collapse.py RUN_DIR [RUN_DIR ...] 
 Writes into the first RUN_DIR (or --output):
   deposit.png  the final deposit of the first run (particles coloured by their initial layer,
                from the last ParaView frame when there is one) and the surface of every run,
-               against the experiment's final height at the wall and runout (Nguyen, Bui and
-               Fukagawa 2015) and the initial column
+               against the experiment's final height at the wall and runout (the true-2D rod
+               collapses of arXiv:1512.05180) and the initial column
   energy.png   potential energy released, kinetic energy from the grid and from the particles
                against time, linear and logarithmic, with the rest threshold
 """
@@ -98,7 +98,8 @@ def plot_deposit(runs, labels, output):
     ax.set_xlim(0, max(0.6, 1.15 * runout_power))
     ax.set_ylim(-0.005, 1.15 * h0)
     ax.set_aspect("equal")
-    ax.set_title("Granular collapse to rest against Nguyen, Bui & Fukagawa (2015), aluminium rods")
+    ax.set_title("Granular collapse to rest against the true-2D aluminium-rod collapses of "
+                 "arXiv:1512.05180")
     ax.legend(fontsize=7, loc="upper right")
     fig.tight_layout()
     fig.savefig(output / "deposit.png", dpi=150)

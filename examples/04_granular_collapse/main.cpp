@@ -1,6 +1,7 @@
 // Example 04: a column of dry cohesionless soil released under gravity flows to rest; the
-// deposit is compared with the true-2D collapse experiments of Nguyen, Bui and Fukagawa
-// (2015, arXiv:1512.05180), aluminium rods in a column against a wall on a horizontal floor:
+// deposit is compared with the true-2D collapse experiments of "Failure Mechanism of True 2D
+// Granular Flows" (arXiv:1512.05180, 2015, the group of Bui and Fukagawa): aluminium rods in a
+// column against a wall on a horizontal floor:
 //   final height      h0 / h = 1.42 a^(2/3)                      (a > 0.65)
 //   runout from wall  d / d0 = 4.30 a^0.72                       (a > 0.65)
 //                     (d - d0) / d0 = 3.25 a^0.96                (0.65 < a < 1.5)
@@ -542,7 +543,7 @@ int main(int argc, char** argv) {
     const fs::path out =
         o.out.empty() ? fs::path("out/04_granular_collapse") / o.tag() : fs::path(o.out);
     io::create_directories(out, "example_04");
-    // The experiment's laws at this aspect ratio (Nguyen, Bui and Fukagawa 2015).
+    // The experiment's laws at this aspect ratio (arXiv:1512.05180).
     const double a = o.column_height / o.column_width;
     const double runout_power = o.column_width * 4.30 * std::pow(a, 0.72);
     const double runout_linear = o.column_width * (1.0 + 3.25 * std::pow(a, 0.96));
