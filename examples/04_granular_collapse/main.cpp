@@ -22,7 +22,8 @@
 // Writes to --out: series.csv (energies, fronts, against time), profile.csv (the final
 // deposit), summary.txt (name = value: outcome, runout, tail mass, run time, the reference),
 // failure.txt when the run stopped (the particle the engine named and its neighbourhood) and
-// frames/collapse.xdmf (ParaView). scripts/plot_granular_collapse.py draws the PNGs.
+// frames/collapse.xdmf (ParaView). scripts/plot_granular_collapse.py draws the PNGs. Exit
+// status: 0 at rest, 2 still moving at --end-time, 1 stopped by an error.
 #include <algorithm>
 #include <array>
 #include <charconv>
