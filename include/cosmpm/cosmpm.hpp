@@ -22,4 +22,6 @@
 #include "cosmpm/particles/store.hpp"
 #include "cosmpm/shape.hpp"
 #include "cosmpm/simulation.hpp"
+#include "cosmpm/transfer/apic.hpp"
+#include "cosmpm/transfer/flip_blend.hpp"
 #include "cosmpm/version.hpp"

@@ -29,52 +29,23 @@
 #include "cosmpm/particles/fields.hpp"
 #include "cosmpm/shape/concept.hpp"
 #include "cosmpm/simulation/block_scheduler.hpp"
+#include "cosmpm/simulation/composition_checks.hpp"
 #include "cosmpm/simulation/engine_state.hpp"
 #include "cosmpm/simulation/parameters.hpp"
 #include "cosmpm/stages/grid_to_particle.hpp"
 #include "cosmpm/stages/grid_update.hpp"
 #include "cosmpm/stages/particle_to_grid.hpp"
 #include "cosmpm/stages/stress_update.hpp"
+#include "cosmpm/transfer/apic.hpp"
+#include "cosmpm/transfer/concept.hpp"
+#include "cosmpm/transfer/flip_blend.hpp"
 
 namespace cosmpm {
 
-namespace detail {
-// Instantiated with the two numbers, so the compiler's message names both.
-template <int kernel_support, int block_cells>
-consteval bool kernel_support_fits_block() {
-  static_assert(kernel_support <= block_cells,
-                "Simulation: the kernel's support (kernel_support) is wider than a particle block "
-                "(block_cells, BlockScheduler::block_cells): the parallel scatter would race");
-  return true;
-}
-
-// The composition's checks, run before anything else of Simulation is instantiated; each
-// failure is a static_assert naming what is wrong.
-template <int Dim, class Kernel, class Continuum, class Contact, class Scheme>
-struct CompositionChecks {
-  static consteval bool check() {
-    static_assert(Dim == 2,
-                  "Simulation<3, ...>: 3D is not implemented yet (the continua, materials and "
-                  "contact laws are 2D plane strain)");
-    if constexpr (Dim == 2) {
-      static_assert(continuum::check_continuum<Continuum, Dim>());
-      static_assert(kernel_support_fits_block<
-                    Kernel::support, BlockScheduler<Dim, Kernel>::smallest_block_cells()>());
-      static_assert(contact::check_contact_law<Contact, Dim>());
-      static_assert(integrator::Integrator<Scheme>,
-                    "Simulation: the scheme needs `static const char* name()` and `template "
-                    "<class Sim> static void step(Sim&, double dt)` (integrator/concept.hpp)");
-    }
-    return true;
-  }
-  static_assert(check());
-};
-}  // namespace detail
-
 template <int Dim, shape::Kernel Kernel, class Continuum, class Contact = contact::SingleField,
-          class Scheme = integrator::USL>
-class Simulation : detail::CompositionChecks<Dim, Kernel, Continuum, Contact, Scheme> {
-  using State = EngineState<Dim, Kernel, Continuum, Contact>;
+          class Scheme = integrator::USL, transfer::VelocityTransfer Transfer = transfer::FlipBlend>
+class Simulation : detail::CompositionChecks<Dim, Kernel, Continuum, Contact, Scheme, Transfer> {
+  using State = EngineState<Dim, Kernel, Continuum, Contact, Transfer>;
 
  public:
   using continuum_type = Continuum;
@@ -82,6 +53,7 @@ class Simulation : detail::CompositionChecks<Dim, Kernel, Continuum, Contact, Sc
   using kernel_type = Kernel;
   using scheme_type = Scheme;
   using contact_type = Contact;
+  using transfer_type = Transfer;
   using store_type = typename State::store_type;
   using stress_type = typename model_type::stress_type;
   using state_type = typename model_type::state_type;
@@ -95,6 +67,13 @@ class Simulation : detail::CompositionChecks<Dim, Kernel, Continuum, Contact, Sc
              const SimulationParameters<Dim>& parameters = {}, Contact contact_law = {})
       : state_(background, continuum, parameters, std::move(contact_law)) {
     validate(parameters);
+    if (Transfer::affine && parameters.flip_fraction != 1.0) {
+      throw Error("SimulationParameters: flip_fraction = " +
+                  detail::format_number(parameters.flip_fraction) + " blends FLIP into " +
+                  Transfer::name() +
+                  ", which has no FLIP part (valid: leave it at 1; the blend applies to "
+                  "transfer::FlipBlend)");
+    }
   }
 
   // A model where the continuum needs nothing else (continuum::Classical).
@@ -164,6 +143,7 @@ class Simulation : detail::CompositionChecks<Dim, Kernel, Continuum, Contact, Sc
                   "double dt)` this simulation can call (integrator/concept.hpp)");
     require_positive("Simulation::step", "dt", dt);
     Scheme::step(*this, dt);
+    handle_stray_particles();
     state_.contact.advance(dt, state_.clock.time);
     state_.clock.time += dt;
     ++state_.clock.step_count;
@@ -195,6 +175,9 @@ class Simulation : detail::CompositionChecks<Dim, Kernel, Continuum, Contact, Sc
   }
   // Constitutive update, deformation gradient and volume from those rates.
   void update_stress(double dt) { stages::update_stress(state_, dt); }
+  // Particles that left the grid box leave the simulation (SimulationParameters::
+  // stray_particles); step() calls it last.
+  void handle_stray_particles() { stages::handle_stray_particles(state_); }
 
   // --- access -----------------------------------------------------------------------------
   store_type& particles() { return state_.particles; }
@@ -214,6 +197,9 @@ class Simulation : detail::CompositionChecks<Dim, Kernel, Continuum, Contact, Sc
   double time() const { return state_.clock.time; }
   std::int64_t step_count() const { return state_.clock.step_count; }
   int threads() const { return state_.threads; }
+  // Particles that left the grid under StrayParticles::freeze or ::remove, and the frozen ones.
+  const StrayReport& stray_particles() const { return state_.strays; }
+  const store_type& frozen_particles() const { return state_.frozen; }
   // Threads that ran the last coloured particle pass (1: serial).
   int last_team_size() const { return state_.blocks.last_team_size(); }
   // Everything the stages work on, for users who write stages of their own.

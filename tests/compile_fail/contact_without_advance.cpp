@@ -6,5 +6,8 @@ struct NoAdvance {
   static const char* name() { return "no advance (test)"; }
   void correct(contact::GridView<2>&) {}
 };
-using Wrong = Simulation<2, shape::Linear, continuum::Classical<material::LinearElastic<>>, NoAdvance>;
-int main() { return sizeof(Wrong) > 0 ? 0 : 1; }
+using Wrong =
+    Simulation<2, shape::Linear, continuum::Classical<material::LinearElastic<>>, NoAdvance>;
+int main() {
+  return sizeof(Wrong) > 0 ? 0 : 1;
+}

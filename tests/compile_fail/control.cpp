@@ -8,5 +8,7 @@ struct WithAdvance {
   void advance(double, double) {}
 };
 using Right = Simulation<2, shape::CubicBSpline, continuum::Classical<material::MohrCoulomb<>>,
-                         WithAdvance>;
-int main() { return sizeof(Right) > 0 ? 0 : 1; }
+                         WithAdvance, integrator::MUSL, transfer::APIC>;
+int main() {
+  return sizeof(Right) > 0 ? 0 : 1;
+}

@@ -8,7 +8,8 @@ using namespace cosmpm;
 struct FiveNodeKernel {
   static constexpr int support = 5;
   static const char* name() { return "five-node (test)"; }
-  static Index evaluate(double, double, Index, std::array<double, 5>& w, std::array<double, 5>& dw) {
+  static Index evaluate(double, double, Index, std::array<double, 5>& w,
+                        std::array<double, 5>& dw) {
     w.fill(0.2);
     dw.fill(0.0);
     return 0;
@@ -16,4 +17,6 @@ struct FiveNodeKernel {
 };
 static_assert(shape::Kernel<FiveNodeKernel>);
 using Wrong = Simulation<2, FiveNodeKernel, continuum::Classical<material::LinearElastic<>>>;
-int main() { return sizeof(Wrong) > 0 ? 0 : 1; }
+int main() {
+  return sizeof(Wrong) > 0 ? 0 : 1;
+}

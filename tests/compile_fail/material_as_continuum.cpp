@@ -3,4 +3,6 @@
 
 using namespace cosmpm;
 using Wrong = Simulation<2, shape::Linear, material::MohrCoulomb<>>;
-int main() { return sizeof(Wrong) > 0 ? 0 : 1; }
+int main() {
+  return sizeof(Wrong) > 0 ? 0 : 1;
+}

@@ -3,4 +3,6 @@
 
 using namespace cosmpm;
 using Wrong = Simulation<3, shape::Linear, continuum::Classical<material::LinearElastic<>>>;
-int main() { return sizeof(Wrong) > 0 ? 0 : 1; }
+int main() {
+  return sizeof(Wrong) > 0 ? 0 : 1;
+}

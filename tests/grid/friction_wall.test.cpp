@@ -39,8 +39,8 @@ TEST_CASE("friction wall: a block slides on a rough floor and stops as a rigid b
   const double mu = 0.3, g = 9.81, v0 = 1.0, density = 1000.0;
   // MUSL: the block's front crosses cells into nodes of tiny mass, which USL's strain rate
   // amplifies (docs/theory/mpm.md, "Which to use").
-  using Sim = Simulation<2, shape::Linear, test::ElasticContinuum, contact::SingleField,
-                         integrator::MUSL>;
+  using Sim =
+      Simulation<2, shape::Linear, test::ElasticContinuum, contact::SingleField, integrator::MUSL>;
   const grid::Grid<2> grid(Vec<2>(0.0, 0.0), Vec<2>(1.0, 0.2), {50, 10});
   SimulationParameters<2> parameters;
   parameters.gravity = Vec<2>(0.0, -g);
@@ -58,7 +58,9 @@ TEST_CASE("friction wall: a block slides on a rough floor and stops as a rigid b
     stress[p] = initial::geostatic_stress(density, g, height - x[p][1], 0.0);
   }
   sim.boundary_conditions().set(BC::face(1, false), grid::BoundaryKind::friction, mu);
-  const auto mean_velocity = [&] { return test::total_momentum(sim)[0] / (density * 0.2 * height); };
+  const auto mean_velocity = [&] {
+    return test::total_momentum(sim)[0] / (density * 0.2 * height);
+  };
   const auto mean_x = [&] {
     double sum = 0.0;
     for (Index p = 0; p < sim.particles().size(); ++p) sum += x[p][0];

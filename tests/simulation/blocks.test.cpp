@@ -26,8 +26,8 @@ Sim make_block(int threads, bool wide = false) {
   parameters.gravity = Vec<2>(0.3, -9.81);
   parameters.threads = threads;
   Sim sim(grid, test::Elastic(2e5, 0.25), parameters);
-  const auto seeding = particles::seed_box(grid, Vec<2>(0.05, 0.0),
-                                           Vec<2>(wide ? 1.95 : 0.3, 0.07), 2);
+  const auto seeding =
+      particles::seed_box(grid, Vec<2>(0.05, 0.0), Vec<2>(wide ? 1.95 : 0.3, 0.07), 2);
   sim.add_particles(seeding.positions, seeding.volume, 1500.0, seeding.half_width);
   sim.add_particles({Vec<2>(0.2001, 0.0613)}, seeding.volume, 1500.0, seeding.half_width);
   REQUIRE(sim.particles().size() % 2 == 1);

@@ -8,6 +8,10 @@
 //                                velocity of USF, the end-of-step velocity, MUSL's remapped
 //                                velocity): corrects it (Bardenhagen's multi-field contact,
 //                                rigid bodies); boundary conditions come after and win;
+//   conditions_applied(const GridView<Dim>&)
+//                                after the boundary conditions of each velocity phase: the
+//                                final velocities, read only, for a law that records forces
+//                                to reconcile them with what was applied;
 //   advance(dt, time)            at the end of every step: moves what the law owns (bodies);
 //   static name()                a short description (output, checkpoint signatures).
 //
@@ -34,6 +38,11 @@ concept CorrectsVelocities = requires(L& law, GridView<Dim>& view) {
 };
 
 template <class L, int Dim>
+concept ReadsConditionedVelocities = requires(L& law, const GridView<Dim>& view) {
+  law.conditions_applied(view);
+};
+
+template <class L, int Dim>
 concept AddsForces = requires(L& law, ForceView<Dim>& view) {
   law.add_forces(view);
 };
@@ -54,6 +63,11 @@ consteval bool check_contact_law() {
     static_assert(CorrectsVelocities<L, Dim>,
                   "contact law: has a member `correct` that does not take contact::GridView<Dim>& "
                   "(the velocity phases would never call it)");
+  }
+  if constexpr (requires { &L::conditions_applied; }) {
+    static_assert(ReadsConditionedVelocities<L, Dim>,
+                  "contact law: has a member `conditions_applied` that does not take const "
+                  "contact::GridView<Dim>&");
   }
   if constexpr (requires { &L::add_forces; }) {
     static_assert(AddsForces<L, Dim>,

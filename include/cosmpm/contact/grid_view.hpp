@@ -33,6 +33,9 @@ struct GridView {
   // Radius, in cells, of a node's shape-function support: a body whose material comes closer
   // than this (per axis) puts mass on the node. The simulation passes node_reach<Kernel>().
   double node_reach = 1.0;
+  // After the boundary conditions (conditions_applied): per node, bit d set where a face
+  // condition imposed velocity component d; empty in the correction itself.
+  std::span<const unsigned char> imposed = {};
 };
 
 // The force phase, before the momentum update: a law adds its contact forces (penalty laws)

@@ -2,11 +2,14 @@
 // The classical (nonpolar) continuum in 2D plane strain: which fields a particle carries, how
 // its stress is updated from the velocity gradient of a step, and how it loads the grid. It
 // has no degrees of freedom besides the translations, so every rotational term of the
-// continuum contract (continuum/concept.hpp) is empty.
+// continuum contract (continuum/concept.hpp) is empty. AntiLocking (continuum/
+// antilocking.hpp) chooses how the volumetric strain rate is formed:
+//   continuum::Classical<material::MohrCoulomb<>, antilocking::FBar>
 #include <array>
 #include <limits>
 #include <span>
 
+#include "cosmpm/continuum/antilocking.hpp"
 #include "cosmpm/continuum/objective_update.hpp"
 #include "cosmpm/continuum/particle_fields.hpp"
 #include "cosmpm/continuum/rates.hpp"
@@ -17,10 +20,11 @@
 
 namespace cosmpm::continuum {
 
-template <material::ConstitutiveModel Model>
-requires(!Model::is_cosserat) class Classical {
+template <material::ConstitutiveModel Model, class AntiLocking = antilocking::None>
+requires(!Model::is_cosserat && material::dimension_of<Model> == 2) class Classical {
  public:
   using model_type = Model;
+  using antilocking_type = AntiLocking;
   using stress_type = typename Model::stress_type;
   using strain_type = typename Model::strain_type;
   using state_type = typename Model::state_type;
@@ -67,14 +71,11 @@ requires(!Model::is_cosserat) class Classical {
     strain[3] += increment[3];
   }
 
-  // Whether the model updates several points at once on packs of their components
-  // (update_values; LinearElastic does): the engine's grid-to-particle loop then runs the
-  // whole stress update side by side for W particles.
+  // Whether the model updates several points at once on packs of their components (the
+  // material concept's packed hook; LinearElastic has it): the engine's grid-to-particle loop
+  // then runs the whole stress update side by side for W particles.
   template <class Value>
-  static constexpr bool updates_values = requires(const Model& model, std::array<Value, 4>& stress,
-                                                  const std::array<Value, 4>& de) {
-    model.update_values(stress, de);
-  };
+  static constexpr bool updates_values = material::HasPackedUpdate<Model, Value>;
 
   // update_stress for W particles at once: lane l of every value belongs to particle l, L the
   // velocity gradient, `strain` the accumulated strain (component 2, zz, is not touched).

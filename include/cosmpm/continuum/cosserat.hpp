@@ -41,7 +41,7 @@ struct CosseratSettings {
 };
 
 template <material::ConstitutiveModel Model>
-requires(Model::is_cosserat) class Cosserat {
+requires(Model::is_cosserat&& material::dimension_of<Model> == 2) class Cosserat {
  public:
   using model_type = Model;
   using stress_type = typename Model::stress_type;

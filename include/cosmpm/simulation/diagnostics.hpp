@@ -16,6 +16,14 @@
 
 namespace cosmpm {
 
+// The particles that left the grid box under StrayParticles::freeze or ::remove.
+struct StrayReport {
+  Index count = 0;    // since the start of the run
+  double mass = 0.0;  // kg (per m of width in 2D)
+  Index count_last_step = 0;
+  double mass_last_step = 0.0;
+};
+
 // Where a step stands, for messages.
 struct StepClock {
   double time = 0.0;  // at the start of the step

@@ -45,14 +45,16 @@ struct NodeFields {
 };
 
 // The particle-to-grid record: weighted-only components first (mass, momentum, rotational
-// inertia and spin momentum), then those that also take a gradient term (force, moment).
-template <int Dim, int R>
+// inertia and spin momentum, and A affine-momentum terms of an affine transfer), then those
+// that also take a gradient term (force, moment).
+template <int Dim, int R, int A = 0>
 struct ScatterRecord {
   static constexpr int mass = 0;
   static constexpr int momentum = 1;  // Dim components
   static constexpr int inertia = 1 + Dim;
   static constexpr int spin_momentum = 1 + Dim + R;
-  static constexpr int weighted = 1 + Dim + 2 * R;
+  static constexpr int affine = 1 + Dim + 2 * R;  // A = Dim x Dim components, row-major
+  static constexpr int weighted = 1 + Dim + 2 * R + A;
   static constexpr int force = weighted;  // Dim components
   static constexpr int moment = weighted + Dim;
   static constexpr int all = weighted + Dim + R;

@@ -10,6 +10,16 @@
 
 namespace cosmpm {
 
+// What happens to a particle that leaves the grid box (a stray): never silently dropped.
+enum class StrayParticles {
+  stop,    // the run stops with an error naming the particle, its position and velocity
+  freeze,  // it leaves the simulation and is kept as it was (Simulation::frozen_particles())
+  remove,  // it leaves the simulation and is dropped
+};
+// freeze and remove count the strays and their mass (Simulation::stray_particles()); a
+// particle with a non-finite position or velocity always stops the run (it is unstable, not
+// stray).
+
 template <int Dim>
 struct SimulationParameters {
   Vec<Dim> gravity = Vec<Dim>::Zero();
@@ -26,6 +36,7 @@ struct SimulationParameters {
   int threads = 0;
   // Nodes lighter than this fraction of a typical particle mass are treated as empty.
   double empty_node_mass_fraction = 1e-12;
+  StrayParticles stray_particles = StrayParticles::stop;
 };
 
 template <int Dim>

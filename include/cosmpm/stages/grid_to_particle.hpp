@@ -20,13 +20,19 @@
 #include "cosmpm/shape/stencil_grid.hpp"
 #include "cosmpm/shape/transfer.hpp"
 #include "cosmpm/simulation/diagnostics.hpp"
+#include "cosmpm/simulation/parameters.hpp"
 #include "cosmpm/stages/deformation.hpp"
 #include "cosmpm/stages/particle_to_grid.hpp"
 #include "cosmpm/stages/stress_update.hpp"
+#include "cosmpm/transfer/apic.hpp"
 
 namespace cosmpm::stages {
 
 namespace detail {
+
+// How a particle's velocity is updated: FLIP, a PIC/FLIP blend, or APIC's PIC velocity with
+// its affine matrix (transfer/apic.hpp).
+enum class VelocityUpdate { flip, blend, affine };
 
 // What every particle of a grid-to-particle map shares.
 template <int Dim, class Blocks>
@@ -39,7 +45,7 @@ struct ParticleMapPass {
 };
 
 // Grid to particles p, ..., p + W - 1.
-template <int W, bool with_stress_update, bool pure_flip, class State>
+template <int W, bool with_stress_update, VelocityUpdate update, class State>
 COSMPM_ALWAYS_INLINE void map_from_grid(State& s, Index p, const auto& pass, Index& first_outside,
                                         Index& first_bad, Index& first_moved) {
   constexpr int Dim = State::dim;
@@ -53,6 +59,7 @@ COSMPM_ALWAYS_INLINE void map_from_grid(State& s, Index p, const auto& pass, Ind
   const auto& start = s.stencil_cells;
   const double dt = pass.dt;
   const double flip = pass.flip;
+  constexpr bool affine = update == VelocityUpdate::affine;
   // Velocity (and the rotational rates) with gradients when the stress is updated here, then
   // the accelerations.
   constexpr int with_gradient = with_stress_update ? Record::with_gradient : 0;
@@ -68,13 +75,31 @@ COSMPM_ALWAYS_INLINE void map_from_grid(State& s, Index p, const auto& pass, Ind
     const P a_grid = grid_values.value[Record::acceleration + d];
     const P v_old = make_pack<W>([&](int l) { return v[p + l][d]; });
     const P x_old = make_pack<W>([&](int l) { return x[p + l][d]; });
-    P v_new = v_old + dt * a_grid;
-    if constexpr (!pure_flip) v_new = flip * v_new + (1.0 - flip) * v_grid;
+    P v_new;
+    if constexpr (affine) {
+      v_new = v_grid;
+      (void)v_old;
+      (void)a_grid;
+    } else {
+      v_new = v_old + dt * a_grid;
+      if constexpr (update == VelocityUpdate::blend) v_new = flip * v_new + (1.0 - flip) * v_grid;
+    }
     const P x_new = x_old + dt * v_grid;
     xi[d] = (x_new - pass.stencil_grid.origin[d]) * pass.stencil_grid.inverse_cell_size[d];
     for (int l = 0; l < W; ++l) {
       v[p + l][d] = lane<W>(v_new, l);
       x[p + l][d] = lane<W>(x_new, l);
+    }
+  }
+  if constexpr (affine) {
+    const auto b = transfer::detail::affine_moment<Record::all>(
+        st, pass.stencil_grid, [&](int l) -> const Vec<Dim>& { return start[p + l]; },
+        pass.records);
+    auto& moment = particles.template get<particles::field::AffineMoment<Dim>>();
+    for (int l = 0; l < W; ++l) {
+      for (int i = 0; i < Dim; ++i) {
+        for (int j = 0; j < Dim; ++j) moment[p + l](i, j) = lane<W>(b[i][j], l);
+      }
     }
   }
   constexpr bool packed = with_stress_update && packed_stress_update<State, W>;
@@ -104,7 +129,9 @@ COSMPM_ALWAYS_INLINE void map_from_grid(State& s, Index p, const auto& pass, Ind
         spin_grid[k] = lane<W>(grid_values.value[Record::spin + k], l);
         spin_acceleration[k] = lane<W>(grid_values.value[Record::spin_acceleration + k], l);
       }
-      State::continuum_type::update_rotations(particles, q, dt, flip, spin_grid, spin_acceleration);
+      // APIC carries no affine rotation field: the rotations take the grid's (PIC).
+      State::continuum_type::update_rotations(particles, q, dt, affine ? 0.0 : flip, spin_grid,
+                                              spin_acceleration);
     }
     if constexpr (with_stress_update) {
       auto& velocity_gradient =
@@ -146,7 +173,7 @@ COSMPM_ALWAYS_INLINE void map_from_grid(State& s, Index p, const auto& pass, Ind
   }
 }
 
-template <bool with_stress_update, bool pure_flip, class State>
+template <bool with_stress_update, VelocityUpdate update, class State>
 void map_to_particles(State& s, double dt) {
   constexpr int Dim = State::dim;
   require_start_stencils(s, "map_to_particles");
@@ -162,16 +189,20 @@ void map_to_particles(State& s, double dt) {
   const Index packs = count / W;
   COSMPM_OMP_PARALLEL_FOR_MIN(s.threads, count, 128, first_outside, first_bad, first_moved)
   for (Index b = 0; b < packs; ++b) {
-    map_from_grid<W, with_stress_update, pure_flip>(s, b * W, pass, first_outside, first_bad,
-                                                    first_moved);
+    map_from_grid<W, with_stress_update, update>(s, b * W, pass, first_outside, first_bad,
+                                                 first_moved);
   }
   for (Index p = packs * W; p < count; ++p) {
-    map_from_grid<1, with_stress_update, pure_flip>(s, p, pass, first_outside, first_bad,
-                                                    first_moved);
+    map_from_grid<1, with_stress_update, update>(s, p, pass, first_outside, first_bad, first_moved);
   }
   if (first_moved < count) s.blocks.mark_changed();
   // A particle that left the grid usually also tore its neighbourhood: name the cause.
-  if (first_outside < count) throw_outside<Dim>(s.particles, s.grid, first_outside, s.clock);
+  if (first_outside < count) {
+    if (s.parameters.stray_particles == StrayParticles::stop) {
+      throw_outside<Dim>(s.particles, s.grid, first_outside, s.clock);
+    }
+    s.strays_pending = true;  // the rest of the step still maps them at their start stencils
+  }
   if (first_bad < count) {
     throw_unstable_stress<Dim, typename State::model_type>(s.particles, first_bad, s.clock);
   }
@@ -179,16 +210,64 @@ void map_to_particles(State& s, double dt) {
 
 }  // namespace detail
 
+// At the end of a step: the particles outside the open grid box leave the simulation under
+// StrayParticles::freeze (kept in s.frozen) or ::remove, counted with their mass. A stray
+// whose position or velocity is not finite stops the run instead: it is unstable.
+template <class State>
+void handle_stray_particles(State& s) {
+  constexpr int Dim = State::dim;
+  s.strays.count_last_step = 0;
+  s.strays.mass_last_step = 0.0;
+  if (!s.strays_pending) return;
+  s.strays_pending = false;
+  const auto& x = s.particles.template get<particles::field::Position<Dim>>();
+  const auto& v = s.particles.template get<particles::field::Velocity<Dim>>();
+  const auto& mass = s.particles.template get<particles::field::Mass>();
+  const shape::StencilGrid<Dim> stencil_grid(s.grid);
+  const auto outside = [&](Index p) {
+    for (int d = 0; d < Dim; ++d) {
+      const double xi = (x[p][d] - stencil_grid.origin[d]) * stencil_grid.inverse_cell_size[d];
+      if (!stencil_grid.inside(d, xi)) return true;
+    }
+    return false;
+  };
+  double stray_mass = 0.0;
+  for (Index p = 0; p < s.particles.size(); ++p) {
+    if (!outside(p)) continue;
+    if (!x[p].allFinite() || !v[p].allFinite()) throw_outside<Dim>(s.particles, s.grid, p, s.clock);
+    stray_mass += mass[p];
+  }
+  const bool keep = s.parameters.stray_particles == StrayParticles::freeze;
+  const Index moved = s.particles.extract_if(outside, keep ? &s.frozen : nullptr);
+  s.strays.count += moved;
+  s.strays.mass += stray_mass;
+  s.strays.count_last_step = moved;
+  s.strays.mass_last_step = stray_mass;
+  // The step's per-particle buffers no longer match; the next map_to_grid rebuilds them.
+  s.stencil_cells.clear();
+  s.particle_rates.clear();
+}
+
 // Pure FLIP (the default) is its own instantiation: its update needs no blend.
 template <class State>
 void map_to_particles(State& s, double dt, bool with_stress_update) {
-  const bool pure_flip = s.parameters.flip_fraction == 1.0;
-  if (with_stress_update) {
-    pure_flip ? detail::map_to_particles<true, true>(s, dt)
-              : detail::map_to_particles<true, false>(s, dt);
+  using detail::VelocityUpdate;
+  // Averaging the volumetric rate over cells needs every particle's rate first: no fusion.
+  const bool fused = with_stress_update && !averages_volume<State>;
+  const auto run = [&]<VelocityUpdate update>() {
+    fused ? detail::map_to_particles<true, update>(s, dt)
+          : detail::map_to_particles<false, update>(s, dt);
+  };
+  if constexpr (State::transfer_type::affine) {
+    run.template operator()<VelocityUpdate::affine>();
+  } else if (s.parameters.flip_fraction == 1.0) {
+    run.template operator()<VelocityUpdate::flip>();
   } else {
-    pure_flip ? detail::map_to_particles<false, true>(s, dt)
-              : detail::map_to_particles<false, false>(s, dt);
+    run.template operator()<VelocityUpdate::blend>();
+  }
+  if (with_stress_update && !fused) {
+    velocity_gradient_from_grid(s, s.nodes.velocity, s.nodes.spin);
+    update_stress(s, dt);
   }
 }
 

@@ -4,6 +4,7 @@
 #include <cmath>
 #include <cstddef>
 #include <span>
+#include <utility>
 #include <vector>
 
 #include "cosmpm/contact/concept.hpp"
@@ -14,24 +15,21 @@
 
 namespace cosmpm::stages {
 
-// The contact law's correction of one nodal velocity field (and the rotational rates of the
-// same phase), if the law joins the velocity phases.
+// The contact law's view of one nodal velocity field (and the rotational rates of the same
+// phase).
 template <class State>
-void correct_contact(State& s, std::vector<Vec<State::dim>>& velocity, std::vector<double>& spin,
-                     double dt, contact::Phase phase) {
-  using Contact = decltype(s.contact);
-  if constexpr (contact::CorrectsVelocities<Contact, State::dim>) {
-    contact::GridView<State::dim> view{s.grid,
-                                       s.nodes.mass,
-                                       velocity,
-                                       s.empty_node_mass(),
-                                       dt,
-                                       s.clock.time,
-                                       phase,
-                                       std::span<double>(spin),
-                                       contact::node_reach<typename State::kernel_type>()};
-    s.contact.correct(view);
-  }
+contact::GridView<State::dim> contact_view(State& s, std::vector<Vec<State::dim>>& velocity,
+                                           std::vector<double>& spin, double dt,
+                                           contact::Phase phase) {
+  return {s.grid,
+          s.nodes.mass,
+          velocity,
+          s.empty_node_mass(),
+          dt,
+          s.clock.time,
+          phase,
+          std::span<double>(spin),
+          contact::node_reach<typename State::kernel_type>()};
 }
 
 // The grid's face conditions on a velocity field and the continuum's on its rotational rates.
@@ -40,6 +38,30 @@ void apply_conditions(const State& s, std::vector<Vec<State::dim>>& velocity,
                       std::vector<double>& spin) {
   grid::apply_boundary_conditions(s.boundary, s.grid, velocity);
   if constexpr (State::rotational_dofs > 0) s.continuum.apply_rotation_conditions(s.grid, spin);
+}
+
+// A velocity phase: the contact law's correction (if it joins the velocity phases), then the
+// boundary conditions, which win, then the law's look at the final velocities with the
+// components the conditions imposed.
+template <class State>
+void correct_and_apply_conditions(State& s, std::vector<Vec<State::dim>>& velocity,
+                                  std::vector<double>& spin, double dt, contact::Phase phase) {
+  using Contact = decltype(s.contact);
+  constexpr int Dim = State::dim;
+  if constexpr (contact::CorrectsVelocities<Contact, Dim>) {
+    auto view = contact_view(s, velocity, spin, dt, phase);
+    s.contact.correct(view);
+  }
+  if constexpr (contact::ReadsConditionedVelocities<Contact, Dim>) {
+    s.imposed.assign(static_cast<std::size_t>(s.grid.node_count()), 0);
+    grid::apply_boundary_conditions(s.boundary, s.grid, velocity, &s.imposed);
+    if constexpr (State::rotational_dofs > 0) s.continuum.apply_rotation_conditions(s.grid, spin);
+    auto view = contact_view(s, velocity, spin, dt, phase);
+    view.imposed = s.imposed;
+    s.contact.conditions_applied(std::as_const(view));
+  } else {
+    apply_conditions(s, velocity, spin);
+  }
 }
 
 // USF: the start-of-step velocity (and spin) from the momentum the particles mapped, in
@@ -59,8 +81,8 @@ void grid_velocity_from_momentum(State& s, double dt) {
     for (int k = 0; k < R; ++k)
       nodes.spin_momentum[n * R + k] /= nodes.rotational_inertia[n * R + k];
   }
-  correct_contact(s, nodes.momentum, nodes.spin_momentum, dt, contact::Phase::start_velocity);
-  apply_conditions(s, nodes.momentum, nodes.spin_momentum);
+  correct_and_apply_conditions(s, nodes.momentum, nodes.spin_momentum, dt,
+                               contact::Phase::start_velocity);
 }
 
 // The grid update proper. Afterwards nodes.momentum holds the start velocity v^t,
@@ -121,9 +143,8 @@ void update_grid(State& s, double dt) {
   }
   // Contact acts on the updated velocity only, so the acceleration (and through FLIP the
   // particles) carries its impulse; boundary conditions come last and win.
-  correct_contact(s, nodes.velocity, nodes.spin, dt, contact::Phase::end_velocity);
   apply_conditions(s, nodes.momentum, nodes.spin_momentum);
-  apply_conditions(s, nodes.velocity, nodes.spin);
+  correct_and_apply_conditions(s, nodes.velocity, nodes.spin, dt, contact::Phase::end_velocity);
   // The grid-to-particle pass reads each node's velocity and acceleration as one record.
   s.gather.resize(static_cast<std::size_t>(Record::all * count));
   double* const gathered = s.gather.data();

@@ -20,6 +20,7 @@
 #include "cosmpm/shape/transfer.hpp"
 #include "cosmpm/simulation/block_scheduler.hpp"
 #include "cosmpm/stages/grid_update.hpp"
+#include "cosmpm/transfer/apic.hpp"
 
 namespace cosmpm::stages {
 
@@ -57,6 +58,53 @@ COSMPM_ALWAYS_INLINE void force_contribution(
     for (int e = 0; e < Dim; ++e) by_gradient[d][e] = b[d][e];
   }
   Continuum::rotational_force_terms(stress, volume, weighted + Dim, by_gradient.data() + Dim);
+}
+
+// A particle's momentum terms of the particle-to-grid maps: m v at `momentum` and, for an
+// affine transfer (transfer/apic.hpp), m (v - C x) there and m C at `affine`, which
+// nodal_momentum() completes per node; C = B D^-1 with the D of the map's stencil `st` at the
+// particle's position in cell units `x_in_cells`.
+template <class State, class Particles>
+COSMPM_ALWAYS_INLINE void momentum_terms(
+    const Particles& particles, Index p, double mass, const Vec<State::dim>& velocity,
+    [[maybe_unused]] const typename State::stencil_type& st,
+    [[maybe_unused]] const Vec<State::dim>& x_in_cells,
+    [[maybe_unused]] const shape::StencilGrid<State::dim>& grid, double* momentum,
+    [[maybe_unused]] double* affine) {
+  constexpr int Dim = State::dim;
+  if constexpr (State::transfer_type::affine) {
+    const Mat<Dim> c = transfer::detail::affine_velocity(
+        particles.template get<particles::field::AffineMoment<Dim>>()[p], st, grid, x_in_cells);
+    for (int d = 0; d < Dim; ++d) {
+      double cx = 0.0;
+      for (int e = 0; e < Dim; ++e) {
+        cx += c(d, e) * (x_in_cells[e] / grid.inverse_cell_size[e]);
+        affine[d * Dim + e] = mass * c(d, e);
+      }
+      momentum[d] = mass * (velocity[d] - cx);
+    }
+  } else {
+    for (int d = 0; d < Dim; ++d) momentum[d] = mass * velocity[d];
+  }
+}
+
+// A node's momentum from its record: the scattered momentum and, for an affine transfer, the
+// affine sum times the node's position from the grid origin.
+template <class State>
+COSMPM_ALWAYS_INLINE Vec<State::dim> nodal_momentum(const State& s, Index n, const double* momentum,
+                                                    [[maybe_unused]] const double* affine) {
+  constexpr int Dim = State::dim;
+  Vec<Dim> out;
+  for (int d = 0; d < Dim; ++d) out[d] = momentum[d];
+  if constexpr (State::transfer_type::affine) {
+    const auto ijk = s.grid.node_ijk(n);
+    for (int d = 0; d < Dim; ++d) {
+      for (int e = 0; e < Dim; ++e) {
+        out[d] += affine[d * Dim + e] * (static_cast<double>(ijk[e]) * s.grid.cell_size()[e]);
+      }
+    }
+  }
+  return out;
 }
 
 namespace detail {
@@ -111,7 +159,13 @@ bool scatter_particles(State& s) {
             Weighted weighted;
             ByGradient by_gradient;
             weighted[Record::mass] = mp;
-            for (int d = 0; d < Dim; ++d) weighted[Record::momentum + d] = mp * v[p][d];
+            if constexpr (State::transfer_type::affine) {
+              momentum_terms<State>(particles, p, mp, v[p], st, stencil_cells[p], stencil_grid,
+                                    weighted.data() + Record::momentum,
+                                    weighted.data() + Record::affine);
+            } else {
+              for (int d = 0; d < Dim; ++d) weighted[Record::momentum + d] = mp * v[p][d];
+            }
             if constexpr (R > 0) {
               const auto inertia = Continuum::rotational_inertia(particles, p, mp);
               const auto spin = Continuum::rotational_velocity(particles, p);
@@ -164,8 +218,12 @@ void map_to_grid(State& s, bool with_forces) {
   for (Index n = 0; n < count; ++n) {
     const double* const record = scattered + n * size;
     nodes.mass[n] = record[Record::mass];
+    if constexpr (State::transfer_type::affine) {
+      nodes.momentum[n] = nodal_momentum(s, n, record + Record::momentum, record + Record::affine);
+    } else {
+      for (int d = 0; d < Dim; ++d) nodes.momentum[n][d] = record[Record::momentum + d];
+    }
     for (int d = 0; d < Dim; ++d) {
-      nodes.momentum[n][d] = record[Record::momentum + d];
       if (with_forces) nodes.force[n][d] = record[Record::force + d];
     }
     for (int k = 0; k < R; ++k) {
@@ -227,7 +285,8 @@ void remap_momentum(State& s, double dt) {
   auto& nodes = s.nodes;
   const Index count = s.grid.node_count();
   require_start_stencils(s, "remap_momentum");
-  constexpr int momenta = Dim + R;
+  constexpr int affine = State::affine_terms;  // after the rotational momenta
+  constexpr int momenta = Dim + R + affine;
   s.scatter.resize(std::max(s.scatter.size(), static_cast<std::size_t>(momenta * count)));
   std::fill(s.scatter.begin(), s.scatter.begin() + momenta * count, 0.0);
   const shape::StencilGrid<Dim> stencil_grid(s.grid);
@@ -236,7 +295,8 @@ void remap_momentum(State& s, double dt) {
     typename State::stencil_type st;
     start_stencil(s, p, stencil_grid, st);
     std::array<double, momenta> weighted;
-    for (int d = 0; d < Dim; ++d) weighted[d] = mass[p] * v[p][d];
+    momentum_terms<State>(s.particles, p, mass[p], v[p], st, s.stencil_cells[p], stencil_grid,
+                          weighted.data(), weighted.data() + Dim + R);
     if constexpr (R > 0) {
       const auto inertia = Continuum::rotational_inertia(s.particles, p, mass[p]);
       const auto spin = Continuum::rotational_velocity(s.particles, p);
@@ -251,13 +311,14 @@ void remap_momentum(State& s, double dt) {
       for (int k = 0; k < R; ++k) nodes.spin[n * R + k] = 0.0;
       continue;
     }
-    for (int d = 0; d < Dim; ++d) nodes.velocity[n][d] = records[n * momenta + d] / nodes.mass[n];
+    const double* const record = records + n * momenta;
+    nodes.velocity[n] = nodal_momentum(s, n, record, record + Dim + R) / nodes.mass[n];
     for (int k = 0; k < R; ++k) {
       nodes.spin[n * R + k] = records[n * momenta + Dim + k] / nodes.rotational_inertia[n * R + k];
     }
   }
-  correct_contact(s, nodes.velocity, nodes.spin, dt, contact::Phase::remapped_velocity);
-  apply_conditions(s, nodes.velocity, nodes.spin);
+  correct_and_apply_conditions(s, nodes.velocity, nodes.spin, dt,
+                               contact::Phase::remapped_velocity);
 }
 
 }  // namespace cosmpm::stages

@@ -134,6 +134,52 @@ void velocity_gradient_from_grid(State& s, const std::vector<Vec<State::dim>>& n
   }
 }
 
+// Whether the continuum averages the volumetric strain rate over cells (antilocking::FBar).
+template <class State>
+inline constexpr bool averages_volume = [] {
+  if constexpr (requires { State::continuum_type::antilocking_type::averages_volume; }) {
+    return static_cast<bool>(State::continuum_type::antilocking_type::averages_volume);
+  } else {
+    return false;
+  }
+}();
+
+// F-bar in rate form (continuum/antilocking.hpp): each particle's volumetric strain rate
+// becomes the volume-weighted average over the particles of its start-of-step cell, in the
+// rates of stage 4a and the particles' velocity gradient field. The sums run in particle
+// order, so they do not depend on the thread count.
+template <class State>
+void average_volumetric_rate(State& s) {
+  constexpr int Dim = State::dim;
+  require_start_stencils(s, "average_volumetric_rate");
+  const shape::StencilGrid<Dim> stencil_grid(s.grid);
+  const auto cell_of = [&](Index p) {
+    Index cell = 0;
+    for (int d = Dim - 1; d >= 0; --d) {
+      cell = cell * s.grid.cells(d) + stencil_grid.cell_of(d, s.stencil_cells[p][d]);
+    }
+    return cell;
+  };
+  Index cells = 1;
+  for (int d = 0; d < Dim; ++d) cells *= s.grid.cells(d);
+  s.cell_sums.assign(static_cast<std::size_t>(2 * cells), 0.0);  // volume, volume x div v
+  const auto& volume = s.particles.template get<particles::field::Volume>();
+  const Index count = s.particles.size();
+  for (Index p = 0; p < count; ++p) {
+    const Index c = cell_of(p);
+    s.cell_sums[2 * c] += volume[p];
+    s.cell_sums[2 * c + 1] += volume[p] * s.particle_rates[p].velocity_gradient.trace();
+  }
+  auto& L = s.particles.template get<particles::field::VelocityGradient<Dim>>();
+  for (Index p = 0; p < count; ++p) {
+    const Index c = cell_of(p);
+    Mat<Dim>& rate = s.particle_rates[p].velocity_gradient;
+    const double shift = (s.cell_sums[2 * c + 1] / s.cell_sums[2 * c] - rate.trace()) / Dim;
+    for (int d = 0; d < Dim; ++d) rate(d, d) += shift;
+    L[p] = rate;
+  }
+}
+
 // Stage 4b: constitutive update, deformation gradient and volume from the rates of 4a. The
 // model takes the particles in runs of fixed length, one call each (material::update_batch):
 // a model with a batched return (CosseratDruckerPrager) is faster so, and the runs do not
@@ -146,6 +192,7 @@ void update_stress(State& s, double dt) {
   using strain_type = typename Model::strain_type;
   require(static_cast<Index>(s.particle_rates.size()) == s.particles.size(),
           "Simulation::update_stress: call velocity_gradient_from_grid first");
+  if constexpr (averages_volume<State>) average_volumetric_rate(s);
   const Index count = s.particles.size();
   auto& stress = s.particles.template get<particles::field::Stress<Model>>();
   auto& state = s.particles.template get<particles::field::MaterialState<Model>>();
