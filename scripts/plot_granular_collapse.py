@@ -19,6 +19,7 @@ import pathlib
 import matplotlib
 
 matplotlib.use("Agg")
+import matplotlib.patches  # noqa: E402
 import matplotlib.pyplot as plt  # noqa: E402
 import numpy as np  # noqa: E402
 
@@ -43,9 +44,10 @@ def read_summary(path):
 
 
 def label_of(summary):
-    return "%s, %s, %g mm, %s ppc, FLIP %s, %s floor" % (
+    transfer = "APIC" if summary.get("transfer") == "apic" else "FLIP " + summary["flip"]
+    return "%s, %s, %g mm, %s ppc, %s, %s floor" % (
         summary["shape"], summary["scheme"].upper(), float(summary["cell_m"]) * 1e3,
-        summary["ppc"], summary["flip"], summary["floor"])
+        summary["ppc"], transfer, summary["floor"])
 
 
 def last_frame(run):
@@ -93,6 +95,12 @@ def plot_deposit(runs, labels, output):
                 xerr=[[0.5 * abs(runout_power - runout_linear)]], fmt="k^", ms=9, capsize=4,
                 label="experiment: runout %.3f-%.3f m (two fits)" % (
                     min(runout_power, runout_linear), max(runout_power, runout_linear)))
+    wall = float(first.get("wall_m", "0"))
+    if wall > 0.0:  # example 04 --wall: the fixed rigid wall, 4 cells thick
+        ax.add_patch(matplotlib.patches.Rectangle(
+            (wall, -0.005), 4.0 * float(first["cell_m"]), 1.2 * h0, color="0.6",
+            label="fixed wall, mu = %s: the soil pushes it with %.1f N/m" % (
+                first["wall_friction"], float(first["wall_force_x_N_per_m"]))))
     ax.set_xlabel("x (m), from the wall")
     ax.set_ylabel("y (m)")
     ax.set_xlim(0, max(0.6, 1.15 * runout_power))

@@ -16,8 +16,15 @@
 // potential energy m g h0 / 2 for --rest-time seconds, or at --end-time.
 //
 //   example_04_granular_collapse [--shape quadratic] [--scheme musl] [--cell 0.0025]
-//                                [--ppc 2] [--flip 0.99] [--floor fixed] [--out DIR] ...
+//                                [--ppc 2] [--transfer blend] [--flip 0.99] [--floor fixed]
+//                                [--wall X] [--out DIR] ...
 //   example_04_granular_collapse --help
+//
+// The run declares itself a free-surface flow (SimulationParameters::free_surface_flow), so
+// the compositions known to fail one (linear shape functions, pure FLIP) stop at once with
+// the reason unless --allow-fragile true. --wall X puts a fixed rigid wall with Coulomb
+// friction across the floor at x = X (contact::RigidContact; without it the law has no body
+// and changes nothing).
 //
 // Writes to --out: series.csv (energies, fronts, against time), profile.csv (the final
 // deposit), summary.txt (name = value: outcome, runout, tail mass, run time, the reference),
@@ -46,17 +53,26 @@ namespace {
 using namespace cosmpm;
 namespace fs = std::filesystem;
 
+// The wall's thickness: wider than any kernel's support, so no node sees through it.
+constexpr double wall_thickness_cells = 4.0;
+
 struct Options {
   std::string shape = "quadratic";  // linear, gimp, quadratic, cubic
   std::string scheme = "musl";      // usl, musl, usf
   double cell = 0.0025;             // m, square cells
   int ppc = 2;                      // particles per cell and axis
-  double flip = 0.99;               // FLIP fraction of the velocity update
+  std::string transfer = "blend";   // blend (PIC/FLIP, --flip) or apic
+  double flip = 0.99;               // FLIP fraction of the velocity update (blend only)
   // A fixed (no-slip) floor, or a Coulomb floor; mu = tan(19.8 deg) makes it as rough as the
   // rods' internal friction (no source we could read gives the rods' friction on the floor).
   // docs/validation.md, "Granular flow to rest", says why the default is fixed.
   std::string floor = "fixed";  // fixed or friction
   double floor_friction = 0.36;
+  // A fixed rigid wall across the floor at x = wall (its face towards the column; 0: none),
+  // with Coulomb friction wall_friction: contact::RigidContact with a body that does not move.
+  double wall = 0.0, wall_friction = 0.36;
+  // Runs a composition the library rejects for free-surface flows (linear, pure FLIP).
+  bool allow_fragile = false;
   // The column (a = 1) and the rods of Bui et al. (2008).
   double column_height = 0.1, column_width = 0.1;  // h0, d0 in m
   double friction_angle = 19.8, dilatancy_angle = 0.0;
@@ -73,8 +89,14 @@ struct Options {
 
   std::string tag() const {
     std::ostringstream name;
-    name << shape << "_" << scheme << "_h" << cell * 1e3 << "mm_ppc" << ppc << "_flip" << flip
-         << "_" << floor;
+    name << shape << "_" << scheme << "_h" << cell * 1e3 << "mm_ppc" << ppc;
+    if (transfer == "apic") {
+      name << "_apic";
+    } else {
+      name << "_flip" << flip;
+    }
+    name << "_" << floor;
+    if (wall > 0.0) name << "_wall" << wall;
     if (empty_node_fraction != 1e-12) name << "_empty" << empty_node_fraction;
     return name.str();
   }
@@ -86,9 +108,13 @@ const char* usage =
     "  --scheme usl|musl|usf                 update scheme                  [musl]\n"
     "  --cell M          cell size, (0, 0.05]                               [0.0025]\n"
     "  --ppc N           particles per cell and axis, 1..4                  [2]\n"
-    "  --flip F          FLIP fraction of the velocity update, [0, 1]       [0.99]\n"
+    "  --transfer blend|apic    PIC/FLIP blend or APIC (not with linear)    [blend]\n"
+    "  --flip F          FLIP fraction of the blend, [0, 1]                 [0.99]\n"
     "  --floor fixed|friction   the floor under the column                  [fixed]\n"
     "  --floor-friction MU      Coulomb coefficient of a friction floor     [0.36]\n"
+    "  --wall X                 a fixed rigid wall with its face at x = X   [none]\n"
+    "  --wall-friction MU       its Coulomb coefficient                     [0.36]\n"
+    "  --allow-fragile true|false  run linear or pure-FLIP compositions     [false]\n"
     "  --height M --width M     the column h0 and d0                        [0.1 0.1]\n"
     "  --phi DEG --psi DEG      friction and dilatancy angles               [19.8 0]\n"
     "  --E PA --nu N --rho KG   Young's modulus, Poisson ratio, density     [0.84e6 0.3 2650]\n"
@@ -156,6 +182,8 @@ Options parse(int argc, char** argv) {
       require_in_range("command line", flag, o.cell, 0.0, 0.05, Bounds::right_closed);
     } else if (flag == "--ppc") {
       o.ppc = whole(flag, text, 1, 4);
+    } else if (flag == "--transfer") {
+      o.transfer = one_of(flag, text, {"blend", "apic"});
     } else if (flag == "--flip") {
       o.flip = number(flag, text);
       require_in_range("command line", flag, o.flip, 0.0, 1.0, Bounds::closed);
@@ -164,6 +192,13 @@ Options parse(int argc, char** argv) {
     } else if (flag == "--floor-friction") {
       o.floor_friction = number(flag, text);
       require_non_negative("command line", flag, o.floor_friction);
+    } else if (flag == "--wall") {
+      positive(o.wall);
+    } else if (flag == "--wall-friction") {
+      o.wall_friction = number(flag, text);
+      require_non_negative("command line", flag, o.wall_friction);
+    } else if (flag == "--allow-fragile") {
+      o.allow_fragile = one_of(flag, text, {"true", "false"}) == "true";
     } else if (flag == "--height") {
       positive(o.column_height);
     } else if (flag == "--width") {
@@ -214,8 +249,17 @@ Options parse(int argc, char** argv) {
           detail::format_number(o.cell) + " m (" + detail::format_number(length) + " m is not)");
     }
   }
+  if (o.transfer == "apic" && o.shape == "linear") {
+    throw Error(
+        "command line: --transfer apic needs a kernel with a continuous gradient (gimp, "
+        "quadratic, cubic), not --shape linear (include/cosmpm/transfer/apic.hpp says why)");
+  }
   require_in_range("command line", "--width", o.column_width, 0.0, 0.5 * o.grid_length,
                    Bounds::right_closed);
+  if (o.wall > 0.0) {
+    require_in_range("command line", "--wall", o.wall, o.column_width + 2.0 * o.cell,
+                     o.grid_length - wall_thickness_cells * o.cell, Bounds::closed);
+  }
   return o;
 }
 
@@ -231,7 +275,9 @@ struct Outcome {
   double deposit_front = NAN, extreme_front = NAN, tail_mass_fraction = NAN;
   double height_at_wall = NAN, max_volume_ratio = NAN;
   double grid_energy = NAN, particle_energy = NAN, energy_scale = NAN;
-  long anomaly_step = -1;  // the first step a particle exceeded sqrt(2 g 2 h0)
+  long anomaly_step = -1;        // the first step a particle exceeded sqrt(2 g 2 h0)
+  Vec<2> wall_force{NAN, NAN};   // the soil's force on the wall in the last step, N/m
+  double deepest_in_wall = NAN;  // largest particle depth past the wall's face, m
 };
 
 // A particle's state and the node masses around it (node mass over the particle's mass, at
@@ -367,10 +413,14 @@ class ParticleTrace {
   io::CsvWriter csv_;
 };
 
-template <class Kernel, class Scheme>
+template <class Kernel, class Scheme, class Transfer>
 Outcome run(const Options& o, const fs::path& out) {
-  using Sim = Simulation<2, Kernel, continuum::Classical<Soil>, contact::SingleField, Scheme>;
-  const Soil soil(o.youngs_modulus, o.poisson_ratio, o.friction_angle, o.dilatancy_angle, 0.0);
+  using Sim =
+      Simulation<2, Kernel, continuum::Classical<Soil>, contact::RigidContact<2>, Scheme, Transfer>;
+  const Soil soil({.youngs_modulus = o.youngs_modulus,
+                   .poisson_ratio = o.poisson_ratio,
+                   .friction_angle_deg = o.friction_angle,
+                   .dilatancy_angle_deg = o.dilatancy_angle});
   // The grid: the floor at y = 0, the wall at x = 0, a quarter of the column's height of room
   // above it.
   const auto cells = [&](double length) {
@@ -381,11 +431,21 @@ Outcome run(const Options& o, const fs::path& out) {
                            {cells(o.grid_length), cells(grid_height)});
   SimulationParameters<2> parameters;
   parameters.gravity = Vec<2>(0.0, -9.81);
-  parameters.flip_fraction = o.flip;
+  if (o.transfer == "blend") parameters.flip_fraction = o.flip;
   parameters.cfl = o.cfl;
   parameters.threads = o.threads;
   parameters.empty_node_mass_fraction = o.empty_node_fraction;
-  Sim sim(grid, soil, parameters);
+  parameters.free_surface_flow = true;
+  parameters.allow_fragile_composition = o.allow_fragile;
+  // Without --wall no body: RigidContact then changes nothing (the runs of SingleField).
+  contact::RigidContact<2> walls;
+  if (o.wall > 0.0) {
+    walls.add_body(contact::RigidBody<2>::box(
+                       Vec<2>(o.wall, -o.cell),
+                       Vec<2>(o.wall + wall_thickness_cells * o.cell, grid_height + o.cell)),
+                   contact::Interface::coulomb(o.wall_friction));
+  }
+  Sim sim(grid, soil, parameters, walls);
   const auto column = particles::seed_box(grid, Vec<2>(Vec<2>::Zero()),
                                           Vec<2>(o.column_width, o.column_height), o.ppc);
   sim.add_particles(column.positions, column.volume, o.density, column.half_width);
@@ -519,14 +579,30 @@ Outcome run(const Options& o, const fs::path& out) {
     outcome.grid_energy = analysis::grid_kinetic_energy(sim);
     outcome.particle_energy = analysis::particle_kinetic_energy(sim);
   }
+  if (o.wall > 0.0) {
+    outcome.wall_force = sim.contact().force_on_body(0);
+    double deepest = 0.0;
+    for (const auto& x : sim.particles().template get<particles::field::Position<2>>()) {
+      deepest = std::max(deepest, x[0] - o.wall);
+    }
+    outcome.deepest_in_wall = deepest;
+  }
   return outcome;
+}
+
+template <class Kernel, class Transfer>
+Outcome run_scheme(const Options& o, const fs::path& out) {
+  if (o.scheme == "usl") return run<Kernel, integrator::USL, Transfer>(o, out);
+  if (o.scheme == "usf") return run<Kernel, integrator::USF, Transfer>(o, out);
+  return run<Kernel, integrator::MUSL, Transfer>(o, out);
 }
 
 template <class Kernel>
 Outcome run_kernel(const Options& o, const fs::path& out) {
-  if (o.scheme == "usl") return run<Kernel, integrator::USL>(o, out);
-  if (o.scheme == "usf") return run<Kernel, integrator::USF>(o, out);
-  return run<Kernel, integrator::MUSL>(o, out);
+  if constexpr (shape::has_continuous_gradient<Kernel>) {
+    if (o.transfer == "apic") return run_scheme<Kernel, transfer::APIC>(o, out);
+  }
+  return run_scheme<Kernel, transfer::FlipBlend>(o, out);  // parse() rejects linear APIC
 }
 
 Outcome run_composition(const Options& o, const fs::path& out) {
@@ -556,7 +632,8 @@ int main(int argc, char** argv) {
     std::ostringstream summary;
     summary.precision(10);
     summary << "shape = " << o.shape << "\nscheme = " << o.scheme << "\ncell_m = " << o.cell
-            << "\nppc = " << o.ppc << "\nflip = " << o.flip << "\nfloor = " << o.floor
+            << "\nppc = " << o.ppc << "\ntransfer = " << o.transfer
+            << "\nflip = " << (o.transfer == "apic" ? 1.0 : o.flip) << "\nfloor = " << o.floor
             << "\nstatus = " << r.status << "\nerror = " << r.error << "\ntime_s = " << r.time
             << "\nrest_time_s = " << r.rest_time << "\nsteps = " << r.steps
             << "\ntime_step_s = " << r.dt << "\nparticles = " << r.particles
@@ -568,7 +645,11 @@ int main(int argc, char** argv) {
             << "\ngrid_kinetic_J_per_m = " << r.grid_energy
             << "\nparticle_kinetic_J_per_m = " << r.particle_energy
             << "\nenergy_scale_J_per_m = " << r.energy_scale
-            << "\nfirst_fast_particle_step = " << r.anomaly_step << "\naspect_ratio = " << a
+            << "\nfirst_fast_particle_step = " << r.anomaly_step << "\nwall_m = " << o.wall
+            << "\nwall_friction = " << o.wall_friction
+            << "\nwall_force_x_N_per_m = " << r.wall_force[0]
+            << "\nwall_force_y_N_per_m = " << r.wall_force[1]
+            << "\nparticle_depth_past_wall_m = " << r.deepest_in_wall << "\naspect_ratio = " << a
             << "\ncolumn_height_m = " << o.column_height << "\ncolumn_width_m = " << o.column_width
             << "\nreference_runout_power_m = " << runout_power
             << "\nreference_runout_linear_m = " << runout_linear
@@ -590,6 +671,12 @@ int main(int argc, char** argv) {
                 100.0 * (r.deposit_front / runout_power - 1.0), 100.0 * r.tail_mass_fraction);
     std::printf("  final height at the wall %.4f m (experiment %.4f m, %+.1f %%)\n",
                 r.height_at_wall, final_height, 100.0 * (r.height_at_wall / final_height - 1.0));
+    if (o.wall > 0.0) {
+      std::printf(
+          "  wall at x = %.4f m: the soil pushes it with (%.4g, %.4g) N/m; deepest "
+          "particle past its face %.3g m\n",
+          o.wall, r.wall_force[0], r.wall_force[1], r.deepest_in_wall);
+    }
     std::printf("results in %s: series.csv, profile.csv, summary.txt%s\n", out.c_str(),
                 o.frames ? ", frames/collapse.xdmf (ParaView)" : "");
     return r.status == "rest" ? 0 : 2;
