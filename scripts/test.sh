@@ -43,6 +43,12 @@ smoke=$(mktemp -d)
   --travel 0.003 --average-from 0 --average-to 0.003 --stress-from 0 --stress-to 0.003 --pdr-at 0.003 \
   --frame-interval 0.003 --out "$smoke/03dem"
 /usr/bin/python3 scripts/plot_dem_flat_blade.py forces "$smoke/03dem" --out "$smoke/03dem/forces.png"
+# Exit status 2: ended at --end-time before coming to rest, as a 0.05 s run does.
+./build/release/examples/example_04_granular_collapse --cell 0.005 --end-time 0.05 \
+  --frame-interval 0.025 --out "$smoke/04" || [ $? -eq 2 ]
+./build/release/examples/example_04_granular_collapse --cell 0.005 --end-time 0.05 \
+  --transfer apic --wall 0.2 --frames false --out "$smoke/04w" || [ $? -eq 2 ]
+/usr/bin/python3 scripts/plot_granular_collapse.py "$smoke/04"
 rm -rf "$smoke"
 
 echo "== ASan + UBSan build" >&2

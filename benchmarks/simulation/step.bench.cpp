@@ -3,6 +3,8 @@
 // items_per_second is particle-steps per second.
 #include <benchmark/benchmark.h>
 
+#include <optional>
+
 #include <type_traits>
 
 #include "cosmpm/continuum/classical.hpp"
@@ -36,13 +38,14 @@ material::CosseratDruckerPrager<> make_model(
 
 template <class Kernel, class Scheme = integrator::USL,
           class Continuum = continuum::Classical<Elastic>, class Transfer = transfer::FlipBlend>
-auto make_block(int threads) {
+auto make_block(int threads, std::optional<double> flip_fraction = std::nullopt) {
   using Sim = Simulation<2, Kernel, Continuum, contact::SingleField, Scheme, Transfer>;
   using Model = typename Continuum::model_type;
   const grid::Grid<2> grid(Vec<2>(0.0, 0.0), Vec<2>(1.2, 0.5), {120, 50});
   SimulationParameters<2> parameters;
   parameters.gravity = Vec<2>(0.0, -9.81);
   parameters.threads = threads;
+  parameters.flip_fraction = flip_fraction;
   const Continuum continuum = [] {
     if constexpr (Continuum::is_cosserat) {
       return Continuum(make_model(std::type_identity<Model>{}), {.micro_inertia = 12.5e-6});
@@ -73,6 +76,14 @@ void full_step(benchmark::State& state) {
   state.SetItemsProcessed(state.iterations() * sim.particles().size());
   state.counters["particles"] = static_cast<double>(sim.particles().size());
   state.counters["threads"] = static_cast<double>(sim.threads());
+}
+
+// The default blend (0.99) against pure FLIP: the cost of the PIC share.
+void full_step_pure_flip(benchmark::State& state) {
+  auto sim = make_block<shape::QuadraticBSpline>(static_cast<int>(state.range(0)), 1.0);
+  const double dt = sim.time_step();
+  for (auto _ : state) sim.step(dt);
+  state.SetItemsProcessed(state.iterations() * sim.particles().size());
 }
 
 void stage_map_to_grid(benchmark::State& state) {
@@ -145,6 +156,7 @@ BENCHMARK(full_step<shape::QuadraticBSpline, integrator::USL, continuum::Classic
                     transfer::APIC>)
     ->Name("step/quadratic_bspline/USL/apic")
     ->Arg(1);
+BENCHMARK(full_step_pure_flip)->Name("step/quadratic_bspline/USL/pure_flip")->Arg(1);
 BENCHMARK(stage_map_to_grid)->Name("stage/linear/map_to_grid");
 BENCHMARK(stage_update_grid)->Name("stage/linear/update_grid");
 BENCHMARK(stage_map_to_particles)->Name("stage/linear/map_to_particles");

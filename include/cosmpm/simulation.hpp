@@ -31,6 +31,7 @@
 #include "cosmpm/simulation/block_scheduler.hpp"
 #include "cosmpm/simulation/composition_checks.hpp"
 #include "cosmpm/simulation/engine_state.hpp"
+#include "cosmpm/simulation/free_surface_checks.hpp"
 #include "cosmpm/simulation/parameters.hpp"
 #include "cosmpm/stages/grid_to_particle.hpp"
 #include "cosmpm/stages/grid_update.hpp"
@@ -67,13 +68,14 @@ class Simulation : detail::CompositionChecks<Dim, Kernel, Continuum, Contact, Sc
              const SimulationParameters<Dim>& parameters = {}, Contact contact_law = {})
       : state_(background, continuum, parameters, std::move(contact_law)) {
     validate(parameters);
-    if (Transfer::affine && parameters.flip_fraction != 1.0) {
+    if (Transfer::affine && parameters.flip_fraction && *parameters.flip_fraction != 1.0) {
       throw Error("SimulationParameters: flip_fraction = " +
-                  detail::format_number(parameters.flip_fraction) + " blends FLIP into " +
+                  detail::format_number(*parameters.flip_fraction) + " blends FLIP into " +
                   Transfer::name() +
-                  ", which has no FLIP part (valid: leave it at 1; the blend applies to "
+                  ", which has no FLIP part (valid: unset or 1; the blend applies to "
                   "transfer::FlipBlend)");
     }
+    check_free_surface_flow<Kernel, Transfer>(parameters);
   }
 
   // A model where the continuum needs nothing else (continuum::Classical).

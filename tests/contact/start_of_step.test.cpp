@@ -41,6 +41,7 @@ struct FallingParticle {
     SimulationParameters<2> p;
     p.gravity = Vec<2>(0.0, -g);
     p.threads = 1;
+    p.flip_fraction = 1.0;  // the hand calculation is FLIP's
     return p;
   }
   static contact::RigidContact<2> law(bool start_correction) {
@@ -105,6 +106,7 @@ TEST_CASE("start-of-step contact: a resting block's recorded force equals its we
     SimulationParameters<2> parameters;
     parameters.gravity = Vec<2>(0.0, -9.81);
     parameters.threads = 1;
+    parameters.flip_fraction = 1.0;
     test::RigidSim sim(grid, test::Elastic(test::youngs_modulus, test::poisson_ratio), parameters,
                        std::move(law));
     const auto seeding = particles::seed_box(grid, Vec<2>(0.1, 0.1), Vec<2>(0.3, 0.2), 2);

@@ -35,6 +35,8 @@ struct Disks {
   static SimulationParameters<2> make_parameters(int threads) {
     SimulationParameters<2> parameters;
     parameters.time_step = 1e-3;  // Sulsky et al.'s step
+    // and their transfer, FLIP; the default blend (0.99) loses 15 % of the energy, not 8 %.
+    parameters.flip_fraction = 1.0;
     parameters.threads = threads;
     return parameters;
   }

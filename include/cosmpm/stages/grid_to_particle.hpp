@@ -179,7 +179,7 @@ void map_to_particles(State& s, double dt) {
   require_start_stencils(s, "map_to_particles");
   const Index count = s.particles.size();
   const ParticleMapPass<Dim, decltype(s.blocks.lookup())> pass{
-      dt, s.parameters.flip_fraction, s.gather.data(), shape::StencilGrid<Dim>(s.grid),
+      dt, s.parameters.flip_fraction_or_default(), s.gather.data(), shape::StencilGrid<Dim>(s.grid),
       s.blocks.lookup()};
   Index first_outside = count;
   Index first_bad = count;
@@ -260,7 +260,7 @@ void map_to_particles(State& s, double dt, bool with_stress_update) {
   };
   if constexpr (State::transfer_type::affine) {
     run.template operator()<VelocityUpdate::affine>();
-  } else if (s.parameters.flip_fraction == 1.0) {
+  } else if (s.parameters.flip_fraction_or_default() == 1.0) {
     run.template operator()<VelocityUpdate::flip>();
   } else {
     run.template operator()<VelocityUpdate::blend>();
