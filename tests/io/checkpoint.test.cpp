@@ -322,11 +322,11 @@ TEST_CASE("frames written before a run goes unstable stay readable, grid fields 
   const Index frames = writer.frame_count();
   CHECK(frames >= 1);
   for (Index f = 0; f < frames; ++f) {
-    CHECK(read_raw(writer.frame_path(f), "/position").ok);
+    CHECK(read_raw(writer.frame_path(f), "/particles/position").ok);
     CHECK(read_raw(writer.frame_path(f), "/grid/mass").ok);
   }
   const RawDataset mass = read_raw(writer.frame_path(0), "/grid/mass");
-  const RawDataset nodes = read_raw(writer.frame_path(0), "/grid/position3");
+  const RawDataset nodes = read_raw(writer.frame_path(0), "/grid/position");
   CHECK(mass.dims == std::vector<hsize_t>{121});  // 11 x 11 nodes
   CHECK(nodes.dims == std::vector<hsize_t>{121, 3});
   // Node 12 = (i, j) = (1, 1) sits at (0.1, 0.1): x fastest numbering, exact products.
@@ -339,11 +339,11 @@ TEST_CASE("frames written before a run goes unstable stay readable, grid fields 
   double particle_mass = 0.0;
   for (const double m : sim.particles().get<field::Mass>()) particle_mass += m;
   CHECK(grid_mass == doctest::Approx(particle_mass).epsilon(1e-12));
-  std::ifstream xdmf(writer.xdmf_path());
+  std::ifstream xdmf(writer.grid_xdmf_path());
   std::stringstream text;
   text << xdmf.rdbuf();
   CHECK(contains(text.str(), "Name=\"grid\""));
-  CHECK(contains(text.str(), "run_000000.h5:/grid/velocity3"));
+  CHECK(contains(text.str(), "run_000000.h5:/grid/velocity"));
 }
 
 TEST_CASE("a restarted simulation resumes its frame series, grid meshes included") {
@@ -367,11 +367,11 @@ TEST_CASE("a restarted simulation resumes its frame series, grid meshes included
   CHECK(writer.write(restarted) == dir / "run_000002.h5");
   // The redone step reaches the state the frame was first written from, bit for bit.
   check_identical(restarted.particles(), sim.particles());
-  CHECK(read_raw(dir / "run_000002.h5", "/stress").ok);
-  std::ifstream xdmf(writer.xdmf_path());
+  CHECK(read_raw(dir / "run_000002.h5", "/particles/stress").ok);
+  std::ifstream xdmf(writer.grid_xdmf_path());
   std::stringstream text;
   text << xdmf.rdbuf();
-  for (const char* reference : {"run_000000.h5:/grid/position3", "run_000001.h5:/grid/velocity3",
+  for (const char* reference : {"run_000000.h5:/grid/position", "run_000001.h5:/grid/velocity",
                                 "run_000002.h5:/grid/mass"}) {
     CHECK_MESSAGE(contains(text.str(), reference), reference);
   }
@@ -410,4 +410,29 @@ TEST_CASE("a contact law's own state is checkpointed through its hooks") {
   CHECK(restarted.contact().offset == straight.contact().offset);
   check_identical(restarted.particles(), straight.particles());
   CHECK(contains(io::composition_signature(restarted), "contact_state=yes"));
+}
+
+TEST_CASE("a caller's own values travel with the checkpoint bit for bit") {
+  const auto dir = output_dir("caller_values");
+  auto sim = make_sim<Sim<>>();
+  sim.step(1e-4);
+  io::CheckpointValues values;
+  values.set("draft_sum", 0.1 + 0.2);  // 0.30000000000000004: needs every bit
+  values.set("next_frame", -0.0);
+  values.set("averaged_steps", 12345.0);
+  values.set("draft_sum", 0.1 + 0.7);  // set again: replaced, not duplicated
+  io::save_checkpoint(sim, dir / "with_values.h5", values);
+  auto restarted = make_sim<Sim<>>();
+  const io::CheckpointValues loaded = io::load_checkpoint(restarted, dir / "with_values.h5");
+  REQUIRE(loaded.entries().size() == 3);
+  CHECK(std::bit_cast<std::uint64_t>(loaded.get("draft_sum")) ==
+        std::bit_cast<std::uint64_t>(0.1 + 0.7));
+  CHECK(std::signbit(loaded.get("next_frame")));
+  CHECK(loaded.get("averaged_steps") == 12345.0);
+  CHECK(contains(error_of([&] { (void)loaded.get("missing", "restart"); }),
+                 "restart: holds no value 'missing'"));
+  CHECK_THROWS_AS(values.set("two\nlines", 1.0), Error);
+  // A checkpoint without values loads with none.
+  io::save_checkpoint(sim, dir / "without_values.h5");
+  CHECK(io::load_checkpoint(restarted, dir / "without_values.h5").empty());
 }

@@ -14,7 +14,9 @@
 // Layout: attributes of / : format = "cosmpm-checkpoint", version = 1, composition (string),
 // time (double), step_count (int64), particle_count (int64); /particles/<label>: N values or
 // N x C doubles (row-major), the state as N x sizeof(state) bytes; /contact/values if the
-// contact law has state (checkpoint_values() / restore_checkpoint_values()).
+// contact law has state (checkpoint_values() / restore_checkpoint_values()); /caller/values
+// with the attribute names (one per line) if the caller stored values of its own (a driver's
+// running sums and next output times: CheckpointValues).
 #include <algorithm>
 #include <cstdint>
 #include <cstdio>
@@ -28,15 +30,10 @@
 
 #include "cosmpm/core/error.hpp"
 #include "cosmpm/io/atomic_file.hpp"
-#include "cosmpm/io/hdf5.hpp"
+#include "cosmpm/io/detail/checkpoint_signature.hpp"
+#include "cosmpm/io/field_layout.hpp"
+#include "cosmpm/io/hdf5_file.hpp"
 #include "cosmpm/version.hpp"
-
-#if __has_include(<cxxabi.h>)
-#include <cxxabi.h>
-
-#include <cstdlib>
-#define COSMPM_IO_HAVE_CXXABI 1
-#endif
 
 namespace cosmpm::io {
 
@@ -45,104 +42,46 @@ struct CheckpointClock {
   std::int64_t step_count = 0;
 };
 
+// Named values of the caller's own, kept bit-exactly beside the simulation's state, so a
+// driver resumes its running sums and output schedule exactly where it stopped.
+class CheckpointValues {
+ public:
+  void set(const std::string& name, double value) {
+    require(!name.empty() && name.find('\n') == std::string::npos,
+            "CheckpointValues: name '" + name + "' must be non-empty and on one line");
+    for (auto& [key, stored] : entries_) {
+      if (key == name) {
+        stored = value;
+        return;
+      }
+    }
+    entries_.emplace_back(name, value);
+  }
+  bool has(const std::string& name) const {
+    for (const auto& entry : entries_) {
+      if (entry.first == name) return true;
+    }
+    return false;
+  }
+  // The value stored under `name`; an Error naming `where` if there is none.
+  double get(const std::string& name, const std::string& where = "checkpoint") const {
+    for (const auto& [key, value] : entries_) {
+      if (key == name) return value;
+    }
+    throw Error(where + ": holds no value '" + name +
+                "' (written by another program or an older version?)");
+  }
+  bool empty() const { return entries_.empty(); }
+  const std::vector<std::pair<std::string, double>>& entries() const { return entries_; }
+
+ private:
+  std::vector<std::pair<std::string, double>> entries_;
+};
+
 namespace detail {
 
 inline constexpr const char* checkpoint_format = "cosmpm-checkpoint";
 inline constexpr std::int64_t checkpoint_version = 1;
-
-// Exact text of a double (hexadecimal float), so geometry compares bit for bit.
-inline std::string exact_text(double value) {
-  char buffer[64];
-  std::snprintf(buffer, sizeof(buffer), "%a", value);
-  return buffer;
-}
-
-// "field.<label>=<type>" items of a store, in declaration order.
-template <class Store>
-std::string store_signature() {
-  std::string text;
-  for_each_tag<Store>([&](auto tag) {
-    using Tag = decltype(tag);
-    using V = typename Tag::value_type;
-    text += "; field." + std::string(Tag::label()) + "=";
-    constexpr FieldKind kind = field_kind<V>();
-    if constexpr (kind == FieldKind::real) {
-      text += "double";
-    } else if constexpr (kind == FieldKind::integer) {
-      text += "int32";
-    } else if constexpr (kind == FieldKind::eigen) {
-      text += "double[" + std::to_string(EigenFixed<V>::rows) + "x" +
-              std::to_string(EigenFixed<V>::cols) + "]";
-    } else {
-      text += "bytes[" + std::to_string(sizeof(V)) + "](";
-      for (std::size_t k = 0; k < V::labels.size(); ++k) {
-        if (k > 0) text += ',';
-        text += V::labels[k];
-      }
-      text += ")";
-    }
-  });
-  return text;
-}
-
-// Splits "key=value; key=value" into items.
-inline std::vector<std::string> signature_items(const std::string& signature) {
-  std::vector<std::string> items;
-  std::size_t start = 0;
-  while (start <= signature.size()) {
-    const std::size_t end = std::min(signature.find("; ", start), signature.size());
-    if (end > start) items.push_back(signature.substr(start, end - start));
-    start = end + 2;
-  }
-  return items;
-}
-
-// The first difference between two signatures, in words.
-inline std::string signature_difference(const std::string& in_file, const std::string& expected) {
-  const auto file_items = signature_items(in_file);
-  const auto our_items = signature_items(expected);
-  auto key_of = [](const std::string& item) { return item.substr(0, item.find('=')); };
-  auto value_of = [](const std::string& item) {
-    const std::size_t eq = item.find('=');
-    return eq == std::string::npos ? std::string() : item.substr(eq + 1);
-  };
-  for (const auto& ours : our_items) {
-    bool found = false;
-    for (const auto& theirs : file_items) {
-      if (key_of(theirs) != key_of(ours)) continue;
-      found = true;
-      if (theirs != ours) {
-        return key_of(ours) + " is '" + value_of(theirs) + "' in the file but '" + value_of(ours) +
-               "' in this simulation";
-      }
-    }
-    if (!found)
-      return "the file has no " + key_of(ours) + " (this simulation has '" + value_of(ours) + "')";
-  }
-  for (const auto& theirs : file_items) {
-    bool found = false;
-    for (const auto& ours : our_items) found = found || key_of(ours) == key_of(theirs);
-    if (!found) return "the file has " + theirs + ", which this simulation does not";
-  }
-  return "the item order differs";
-}
-
-// A readable type name for the signature (demangled where the ABI allows).
-template <class T>
-std::string type_name() {
-  const char* mangled = typeid(T).name();
-#if defined(COSMPM_IO_HAVE_CXXABI)
-  int status = 0;
-  char* readable = abi::__cxa_demangle(mangled, nullptr, nullptr, &status);
-  if (status == 0 && readable != nullptr) {
-    std::string name = readable;
-    std::free(readable);
-    return name;
-  }
-  std::free(readable);
-#endif
-  return mangled;
-}
 
 template <class Sim>
 concept HasContactState = requires(Sim& sim, const std::vector<double>& values) {
@@ -157,7 +96,8 @@ concept HasContactState = requires(Sim& sim, const std::vector<double>& values) 
 template <class Store>
 void write_checkpoint(const std::filesystem::path& path, const Store& particles,
                       const CheckpointClock& clock, const std::string& composition,
-                      const std::vector<double>* contact_values = nullptr) {
+                      const std::vector<double>* contact_values = nullptr,
+                      const CheckpointValues* caller_values = nullptr) {
   if (path.has_parent_path()) create_directories(path.parent_path(), "save_checkpoint");
   TemporaryFile temporary(path);
   Hdf5File file = Hdf5File::create(temporary.path(), /*checksummed_metadata=*/true);
@@ -196,6 +136,17 @@ void write_checkpoint(const std::filesystem::path& path, const Store& particles,
     file.write("/contact/values", contact_values->data(),
                {static_cast<hsize_t>(contact_values->size())}, checked);
   }
+  if (caller_values != nullptr && !caller_values->empty()) {
+    std::vector<double> values;
+    std::string names;
+    for (const auto& [name, value] : caller_values->entries()) {
+      values.push_back(value);
+      names += (names.empty() ? "" : "\n") + name;
+    }
+    file.create_group("/caller");
+    file.write("/caller/values", values.data(), {static_cast<hsize_t>(values.size())}, checked);
+    file.set_attribute("names", names, "/caller/values");
+  }
   file.close();
   temporary.commit();
 }
@@ -205,7 +156,8 @@ void write_checkpoint(const std::filesystem::path& path, const Store& particles,
 template <class Store>
 CheckpointClock read_checkpoint(const std::filesystem::path& path, Store& particles,
                                 const std::string& composition,
-                                std::vector<double>* contact_values = nullptr) {
+                                std::vector<double>* contact_values = nullptr,
+                                CheckpointValues* caller_values = nullptr) {
   const std::string where = "load_checkpoint: '" + path.string() + "'";
   Hdf5File file = Hdf5File::open_read(path);
   if (!file.has_attribute("format") ||
@@ -264,6 +216,24 @@ CheckpointClock read_checkpoint(const std::filesystem::path& path, Store& partic
     contact_values->resize(static_cast<std::size_t>(dims[0]));
     file.read("/contact/values", contact_values->data(), dims, true);
   }
+  if (caller_values != nullptr) {
+    *caller_values = {};
+    if (file.has("/caller/values")) {
+      const auto dims = file.shape("/caller/values");
+      std::vector<double> values(dims.size() == 1 ? static_cast<std::size_t>(dims[0]) : 0);
+      file.read("/caller/values", values.data(), {values.size()}, true);
+      const std::string names = file.string_attribute("names", "/caller/values");
+      std::size_t start = 0;
+      for (const double value : values) {
+        const std::size_t end = std::min(names.find('\n', start), names.size());
+        caller_values->set(names.substr(start, end - start), value);
+        start = end + 1;
+      }
+      if (caller_values->entries().size() != values.size()) {
+        file.fail("/caller/values", "has names that do not match its values");
+      }
+    }
+  }
   particles = std::move(loaded);
   return clock;
 }
@@ -300,22 +270,25 @@ std::string composition_signature(const Sim& sim) {
   return text + detail::store_signature<typename Sim::store_type>();
 }
 
-// Saves the particles and the clock of `sim` (and the contact law's state, if it has one).
+// Saves the particles and the clock of `sim` (and the contact law's state, if it has one),
+// with the caller's own `values`.
 template <class Sim>
-void save_checkpoint(const Sim& sim, const std::filesystem::path& path) {
+void save_checkpoint(const Sim& sim, const std::filesystem::path& path,
+                     const CheckpointValues& values = {}) {
   const CheckpointClock clock{sim.time(), sim.step_count()};
   if constexpr (detail::HasContactState<Sim>) {
-    const std::vector<double> values = sim.contact().checkpoint_values();
-    write_checkpoint(path, sim.particles(), clock, composition_signature(sim), &values);
+    const std::vector<double> contact = sim.contact().checkpoint_values();
+    write_checkpoint(path, sim.particles(), clock, composition_signature(sim), &contact, &values);
   } else {
-    write_checkpoint(path, sim.particles(), clock, composition_signature(sim));
+    write_checkpoint(path, sim.particles(), clock, composition_signature(sim), nullptr, &values);
   }
 }
 
 // Restores a checkpoint into `sim`, which must be set up as for the run that wrote it (same
-// composition, grid and particle count); see the note at the top of this header.
+// composition, grid and particle count); see the note at the top of this header. Returns the
+// caller's values saved with it.
 template <class Sim>
-void load_checkpoint(Sim& sim, const std::filesystem::path& path) {
+CheckpointValues load_checkpoint(Sim& sim, const std::filesystem::path& path) {
   const std::string where = "load_checkpoint: '" + path.string() + "'";
   Hdf5File probe = Hdf5File::open_read(path);
   if (probe.has_attribute("particle_count")) {
@@ -329,14 +302,16 @@ void load_checkpoint(Sim& sim, const std::filesystem::path& path) {
   }
   probe.close();
   CheckpointClock clock;
+  CheckpointValues caller;
   if constexpr (detail::HasContactState<Sim>) {
-    std::vector<double> values;
-    clock = read_checkpoint(path, sim.particles(), composition_signature(sim), &values);
-    sim.contact().restore_checkpoint_values(values);
+    std::vector<double> contact;
+    clock = read_checkpoint(path, sim.particles(), composition_signature(sim), &contact, &caller);
+    sim.contact().restore_checkpoint_values(contact);
   } else {
-    clock = read_checkpoint(path, sim.particles(), composition_signature(sim));
+    clock = read_checkpoint(path, sim.particles(), composition_signature(sim), nullptr, &caller);
   }
   sim.set_clock(clock.time, clock.step_count);
+  return caller;
 }
 
 }  // namespace cosmpm::io
