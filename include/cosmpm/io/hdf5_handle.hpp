@@ -2,12 +2,10 @@
 // HDF5 identifiers closed by RAII, HDF5's error stack as message text, and the native types
 // of the element types cosmpm writes. The only header that includes <hdf5.h>: everything
 // under cosmpm/io/hdf5*.hpp and cosmpm/io/checkpoint.hpp needs the cosmpm::hdf5 target.
-#if defined(__has_include)
-#if !__has_include(<hdf5.h>)
+#if defined(__has_include) && !__has_include(<hdf5.h>)
 #error \
     "cosmpm/io/hdf5*.hpp and cosmpm/io/checkpoint.hpp need HDF5: link the CMake target cosmpm::hdf5 (find_package(cosmpm COMPONENTS hdf5); Debian package libhdf5-dev)"
-#endif
-#endif
+#else
 #include <hdf5.h>
 
 #include <concepts>
@@ -116,3 +114,4 @@ inline std::string shape_text(const std::vector<hsize_t>& dims) {
 }
 
 }  // namespace cosmpm::io::detail
+#endif

@@ -1,0 +1,159 @@
+#pragma once
+// The compositions of the engine this program is built with, chosen at run time by
+// --material, --shape and --integrator: each is one type behind a std::variant, and the run
+// of each is compiled once, in the run_*.cpp file of its model (ninja builds them side by
+// side). The library stays free of run-time choices.
+//
+// Built in: the default method (linear shape functions, MUSL) with each model; every shape
+// function with MUSL; every integrator with linear shape functions: 6 per model, 18 in all.
+// The full product (36) would double the build time of this example (measured: README of
+// the lead's notes, docs/usage.md); another composition is one line in AnyComposition and
+// one in the run_*.cpp file of its model.
+#include <cstddef>
+#include <functional>
+#include <optional>
+#include <string>
+#include <type_traits>
+#include <utility>
+#include <variant>
+
+#include "case.hpp"
+#include "cosmpm/integrator/schemes.hpp"
+#include "cosmpm/material/cosserat_drucker_prager.hpp"
+#include "cosmpm/material/drucker_prager.hpp"
+#include "cosmpm/material/mohr_coulomb.hpp"
+#include "cosmpm/shape/cubic_bspline.hpp"
+#include "cosmpm/shape/gimp.hpp"
+#include "cosmpm/shape/linear.hpp"
+#include "cosmpm/shape/quadratic_bspline.hpp"
+
+namespace cosmpm::io {
+class Options;
+class RunDirectory;
+class StopRequest;
+}  // namespace cosmpm::io
+
+namespace flat_blade {
+
+template <class Kernel, class Scheme, class Model>
+struct Composition {
+  using kernel = Kernel;
+  using scheme = Scheme;
+  using model = Model;
+};
+
+using MohrCoulomb = cosmpm::material::MohrCoulomb<>;
+using DruckerPrager = cosmpm::material::DruckerPrager<>;
+using CosseratDruckerPrager = cosmpm::material::CosseratDruckerPrager<>;
+namespace shape = cosmpm::shape;
+namespace integrator = cosmpm::integrator;
+
+template <class Model>
+using CompositionsOf = std::variant<Composition<shape::Linear, integrator::MUSL, Model>,
+                                    Composition<shape::Linear, integrator::USL, Model>,
+                                    Composition<shape::Linear, integrator::USF, Model>,
+                                    Composition<shape::GIMP, integrator::MUSL, Model>,
+                                    Composition<shape::QuadraticBSpline, integrator::MUSL, Model>,
+                                    Composition<shape::CubicBSpline, integrator::MUSL, Model>>;
+
+template <class... A, class... B, class... C>
+auto join(std::variant<A...>, std::variant<B...>, std::variant<C...>)
+    -> std::variant<A..., B..., C...>;
+
+using AnyComposition = decltype(join(CompositionsOf<MohrCoulomb>{}, CompositionsOf<DruckerPrager>{},
+                                     CompositionsOf<CosseratDruckerPrager>{}));
+
+// The option values that name each policy.
+template <class T>
+constexpr const char* option_name() {
+  if constexpr (std::is_same_v<T, shape::Linear>) return "linear";
+  if constexpr (std::is_same_v<T, shape::GIMP>) return "gimp";
+  if constexpr (std::is_same_v<T, shape::QuadraticBSpline>) return "quadratic-bspline";
+  if constexpr (std::is_same_v<T, shape::CubicBSpline>) return "cubic-bspline";
+  if constexpr (std::is_same_v<T, integrator::USL>) return "usl";
+  if constexpr (std::is_same_v<T, integrator::MUSL>) return "musl";
+  if constexpr (std::is_same_v<T, integrator::USF>) return "usf";
+  if constexpr (std::is_same_v<T, MohrCoulomb>) return "mohr-coulomb";
+  if constexpr (std::is_same_v<T, DruckerPrager>) return "drucker-prager";
+  if constexpr (std::is_same_v<T, CosseratDruckerPrager>) return "cosserat-drucker-prager";
+}
+
+template <class C>
+std::string composition_name() {
+  return std::string(option_name<typename C::model>()) + " / " + option_name<typename C::kernel>() +
+         " / " + option_name<typename C::scheme>();
+}
+
+// Calls f(std::in_place_index<I>, material, shape, integrator) for each composition.
+template <class F>
+void for_each_composition(F&& f) {
+  [&]<std::size_t... I>(std::index_sequence<I...>) {
+    (
+        [&] {
+          using C = std::variant_alternative_t<I, AnyComposition>;
+          f(std::in_place_index<I>, option_name<typename C::model>(),
+            option_name<typename C::kernel>(), option_name<typename C::scheme>());
+        }(),
+        ...);
+  }
+  (std::make_index_sequence<std::variant_size_v<AnyComposition>>{});
+}
+
+// One line per composition built in, as the options that choose it.
+inline std::string compositions_text() {
+  std::string text;
+  for_each_composition([&](auto, const char* material, const char* shape, const char* scheme) {
+    text +=
+        std::string("\n  --material ") + material + " --shape " + shape + " --integrator " + scheme;
+  });
+  return text;
+}
+
+// The composition the case asks for; an Error listing those built in if there is none.
+inline AnyComposition find_composition(const Case& c) {
+  std::optional<AnyComposition> found;
+  for_each_composition(
+      [&](auto index, const char* material, const char* shape, const char* scheme) {
+        if (!found && c.material == material && c.shape == shape && c.integrator == scheme) {
+          found.emplace(index);
+        }
+      });
+  const std::string available = compositions_text();
+  if (!found) {
+    throw cosmpm::Error("--material " + c.material + " --shape " + c.shape + " --integrator " +
+                        c.integrator +
+                        " is not among the compositions built into this program (add it in "
+                        "examples/03_flat_blade/compositions.hpp); built in:" +
+                        available);
+  }
+  return *found;
+}
+
+// What a run reports back.
+struct Outcome {
+  double average_draft_per_width = 0.0;     // N/m over [average_from, average_to]
+  double average_vertical_per_width = 0.0;  // N/m
+  double sokolovski_per_width = 0.0;
+  double sokolovski_vertical_per_width = 0.0;
+  double run_seconds = 0.0;  // of this session
+  long steps = 0;
+  long particles = 0;
+  double time_step = 0.0;
+  bool stopped = false;  // by SIGINT or SIGTERM; a checkpoint was written
+  double travel = 0.0;   // blade travel reached, m
+};
+
+// What the run needs from main: the options (for messages and the run's parameters), the
+// output folder (opened only once the case is known to be feasible) and the stop request.
+struct RunContext {
+  const cosmpm::io::Options& options;
+  std::string parameters;  // the settings as a case file
+  std::function<cosmpm::io::RunDirectory&()> open_folder;
+  const cosmpm::io::StopRequest& stop;
+};
+
+// The run of one composition: compiled in run_<model>_*.cpp.
+template <class Kernel, class Scheme, class Model>
+Outcome run(const Case& c, RunContext& context, Composition<Kernel, Scheme, Model>);
+
+}  // namespace flat_blade
