@@ -8,6 +8,7 @@
 //   example_01_elastic_column --help
 #include <algorithm>
 #include <cmath>
+#include <csignal>
 #include <cstdio>
 #include <exception>
 #include <new>
@@ -34,6 +35,11 @@ int main(int argc, char** argv) {
   options.text("out", out, "DIR", "output folder", io::Options::Role::control);
   options.flag("replace", replace, "delete an earlier run's results in the output folder first",
                io::Options::Role::control);
+#ifdef SIGXFSZ
+  // Beyond a file-size limit (ulimit -f) a write then fails with EFBIG, which the writers
+  // report, instead of the signal killing the process.
+  std::signal(SIGXFSZ, SIG_IGN);
+#endif
   try {
     if (options.parse(argc, argv) == io::Options::Outcome::help) {
       std::fputs(options.help().c_str(), stdout);

@@ -9,6 +9,7 @@
 //                             [--wall-lines N] [--fan-rays N] [--out DIR] [--replace true]
 //   example_02_earth_pressure --help
 #include <cmath>
+#include <csignal>
 #include <cstdio>
 #include <exception>
 #include <limits>
@@ -139,6 +140,11 @@ int main(int argc, char** argv) {
                       "method of characteristics, beside Rankine, Coulomb and the weightless "
                       "log-spiral; defaults: the corn of Coetzee (2014). Writes the wall "
                       "stresses and slip line per depth and a summary as CSV.");
+#ifdef SIGXFSZ
+  // Beyond a file-size limit (ulimit -f) a write then fails with EFBIG, which the writers
+  // report, instead of the signal killing the process.
+  std::signal(SIGXFSZ, SIG_IGN);
+#endif
   try {
     earth_pressure::declare_options(options, c);
     if (options.parse(argc, argv) == io::Options::Outcome::help) {

@@ -74,6 +74,7 @@ struct Case {
   bool replace = false;
   bool restart = false;
   bool allow_large_run = false;
+  bool check_only = false;
 
   bool is_polar() const { return material == "cosserat-drucker-prager"; }
 
@@ -209,6 +210,10 @@ inline void declare_options(Options& o, Case& c) {
          Role::control);
   o.integer("threads", c.threads, 0, 4096, "OpenMP threads (0: all); results do not depend on it",
             Role::control);
+  o.flag("check", c.check_only,
+         "check the case and estimate the run (particles, steps, time), then stop; writes "
+         "nothing",
+         Role::control);
   o.flag("allow-large-run", c.allow_large_run,
          "start even when the run looks longer than a day or larger than the memory",
          Role::control);

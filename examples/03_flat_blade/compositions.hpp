@@ -6,9 +6,9 @@
 //
 // Built in: the default method (linear shape functions, MUSL) with each model; every shape
 // function with MUSL; every integrator with linear shape functions: 6 per model, 18 in all.
-// The full product (36) would double the build time of this example (measured: README of
-// the lead's notes, docs/usage.md); another composition is one line in AnyComposition and
-// one in the run_*.cpp file of its model.
+// The full product (36) would double the build time of this example, already six times the
+// single composition's (docs/usage.md has the figures); another composition is one line in
+// CompositionsOf and one in the run_*.cpp file of its model.
 #include <cstddef>
 #include <functional>
 #include <optional>
@@ -140,6 +140,7 @@ struct Outcome {
   long particles = 0;
   double time_step = 0.0;
   bool stopped = false;  // by SIGINT or SIGTERM; a checkpoint was written
+  bool checked = false;  // --check: the case was checked, nothing run or written
   double travel = 0.0;   // blade travel reached, m
 };
 

@@ -11,6 +11,7 @@
 // or when stopped) and frames/flat_blade.xdmf (ParaView; the blade in
 // frames/flat_blade_bodies.xdmf) with one HDF5 frame per --frame-interval of travel.
 // scripts/plot_flat_blade.py turns them into PNG plots; docs/usage.md describes them.
+#include <csignal>
 #include <cstdio>
 #include <exception>
 #include <filesystem>
@@ -23,6 +24,7 @@
 
 #include "case.hpp"
 #include "compositions.hpp"
+#include "cosmpm/core/parallel.hpp"
 #include "cosmpm/io/csv.hpp"
 #include "cosmpm/io/options.hpp"
 #include "cosmpm/io/run_directory.hpp"
@@ -93,6 +95,11 @@ int main(int argc, char** argv) {
                       "earth pressure. Defaults are the paper's Table 1 (h = 250 mm, 120 x 70 "
                       "cells); the paper's cases are in examples/03_flat_blade/cases/.");
   std::optional<io::RunDirectory> folder;
+#ifdef SIGXFSZ
+  // Beyond a file-size limit (ulimit -f) a write then fails with EFBIG, which the writers
+  // report, instead of the signal killing the process.
+  std::signal(SIGXFSZ, SIG_IGN);
+#endif
   try {
     flat_blade::declare_options(options, c);
     if (options.parse(argc, argv) == io::Options::Outcome::help) {
@@ -136,6 +143,13 @@ int main(int argc, char** argv) {
     const flat_blade::Outcome o = std::visit(
         [&](auto composition_type) { return flat_blade::run(c, context, composition_type); },
         composition);
+    if (o.checked) {
+      std::printf(
+          "case checked: %ld particles, %ld steps of %.3g s; at least %.0f s of "
+          "computing on %d thread(s); nothing written\n",
+          o.particles, o.steps, o.time_step, o.run_seconds, resolve_thread_count(c.threads));
+      return 0;
+    }
     if (o.stopped) {
       std::printf(
           "stopped by %s at %.2f mm of travel (t = %.6g s, step %ld); checkpoint written.\n"

@@ -200,7 +200,19 @@ Outcome run(const Case& c, RunContext& context, Composition<Kernel, Scheme, Mode
 
   const double dt = sim.time_step();
   const double end_time = start_time + c.travel / speed;
-  check_promises(c, options, dt, sim.particles().size(), resolve_thread_count(c.threads));
+  const int threads = resolve_thread_count(c.threads);
+  check_promises(c, options, dt, sim.particles().size(), threads);
+  if (c.check_only) {
+    Outcome checked;
+    checked.checked = true;
+    checked.particles = static_cast<long>(sim.particles().size());
+    checked.time_step = dt;
+    checked.steps = static_cast<long>(std::ceil(end_time / dt));
+    checked.run_seconds = static_cast<double>(checked.steps) *
+                          static_cast<double>(checked.particles) /
+                          (optimistic_particle_steps_per_second * threads);
+    return checked;
+  }
 
   // Only now, with a case that can keep its promises, is the output folder taken.
   io::RunDirectory& folder = context.open_folder();

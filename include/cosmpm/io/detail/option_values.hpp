@@ -75,11 +75,11 @@ inline std::size_t edit_distance(std::string_view a, std::string_view b) {
   return row[b.size()];
 }
 
-// The known name nearest to `name` (at most a third of its letters off, or `name` is the
-// start of it), or empty.
+// The known name nearest to `name` (at most two edits or a third of its letters off, or
+// `name` is the start of it), or empty.
 inline std::string nearest_name(std::string_view name, const std::vector<std::string>& known) {
   std::string best;
-  std::size_t best_distance = name.size() / 3 + 1;
+  std::size_t best_distance = std::max<std::size_t>(2, name.size() / 3) + 1;
   for (const auto& candidate : known) {
     if (!name.empty() && candidate.rfind(name, 0) == 0) return candidate;
     const std::size_t distance = edit_distance(name, candidate);
