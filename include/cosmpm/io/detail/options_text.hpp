@@ -7,6 +7,7 @@
 
 #include "cosmpm/core/error.hpp"
 #include "cosmpm/io/detail/option_values.hpp"
+#include "cosmpm/io/options.hpp"  // the class whose members this file defines
 
 namespace cosmpm::io {
 
