@@ -7,7 +7,7 @@ the legacy XDMFReader: every mesh of the frame is there with its points and cell
 polyvertex cloud has one cell per point, a rigid body one polygon), every attribute the
 XDMF file lists is there with its number of components (1, 3 or 9), and both readers give
 the same values. Each reader's view, coloured by the stress component sigma_xx where there
-is a stress, is rendered to OUTPUT_DIR/<series>_<reader>.png and must show the colour map
+is a stress, is rendered to OUTPUT_DIR/<n>_<series>_<reader>.png and must show the colour map
 (or, without a stress, must not be blank). Exits 1 with a message naming the reader, the
 mesh and the array on any difference.
 """
@@ -157,14 +157,14 @@ def drawn_pixels(png, coloured):
     return int(np.count_nonzero(pixels.min(axis=1) < 200))
 
 
-def check_series(view, path, output):
+def check_series(view, number, path, output):
     meshes = expected_meshes(path)
     coloured = any("stress" in mesh["arrays"]["Node"] for mesh in meshes)
     stem = os.path.splitext(os.path.basename(path))[0]
     results = {}
     for kind in ("Xdmf3ReaderS", "XDMFReader"):
         reader, last, values = check_reader(kind, path, meshes)
-        png = os.path.join(output, "%s_%s.png" % (stem, kind))
+        png = os.path.join(output, "%d_%s_%s.png" % (number, stem, kind))
         render(view, reader, last, png, coloured)
         pixels = drawn_pixels(png, coloured)
         if pixels < 200:
@@ -191,8 +191,8 @@ def main():
     view.OrientationAxesVisibility = 0
     view.UseColorPaletteForBackground = 0
     view.Background = [1.0, 1.0, 1.0]
-    for path in sys.argv[2:]:
-        check_series(view, os.path.abspath(path), output)
+    for number, path in enumerate(sys.argv[2:], start=1):
+        check_series(view, number, os.path.abspath(path), output)
 
 
 main()
