@@ -11,6 +11,11 @@ shift || true
 "$root/scripts/setup.sh"
 cmake -S . -B build/release -G Ninja -DCMAKE_BUILD_TYPE=Release -DCOSMPM_BUILD_EXAMPLES=ON >/dev/null
 cmake --build build/release -j "${COSMPM_JOBS:-2}" --target example_03_flat_blade
+# A rerun replaces the earlier results of the same cases (unless told otherwise).
+extra=(--replace true)
+for arg in "$@"; do
+  case "$arg" in --replace* | --restart* | --out*) extra=() ;; esac
+done
 modes=()
 case "$which" in
   nonpolar) modes=(false) ;;
@@ -22,7 +27,7 @@ for polar in "${modes[@]}"; do
   for mesh in 120x70 80x50; do
     for depth in 0.15 0.25 0.35; do
       /usr/bin/time -f "%e s wall" ./build/release/examples/example_03_flat_blade \
-        --polar "$polar" --mesh "$mesh" --depth "$depth" --threads 1 "$@"
+        --polar "$polar" --mesh "$mesh" --depth "$depth" --threads 1 "${extra[@]}" "$@"
     done
   done
 done
