@@ -73,6 +73,11 @@ expect 1 "applies to polar soil only" "$e3" --length-scale 0.02
 expect 1 "is not among the compositions built into this program" "$e3" --shape cubic-bspline \
   --integrator usf
 expect 1 "unknown option 'dpeth' (did you mean --depth?)" "$e3" --dpeth 0.2
+expect 1 "--flip = 0.9 (command line): blends FLIP into --transfer apic" "$e3" --transfer apic \
+  --shape quadratic-bspline --flip 0.9
+expect 1 "--antilocking = fbar (command line): applies to nonpolar soil only" "$e3" --polar true \
+  --antilocking fbar
+expect 1 "--transfer apic --antilocking none is not among the compositions" "$e3" --transfer apic
 expect 0 "results in run" "$e3" "${smoke[@]}" --frames false --out run
 expect 1 "holds the results of an earlier run" "$e3" "${smoke[@]}" --frames false --out run
 expect 0 "results in run" "$e3" "${smoke[@]}" --frames false --out run --replace true

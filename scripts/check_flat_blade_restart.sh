@@ -1,8 +1,9 @@
 #!/usr/bin/env bash
 # A flat-blade run stopped by SIGTERM and restarted (--restart true) writes the same
 # forces.csv, blade_stress.csv and frames as one that was not stopped; so does a restart
-# from a --checkpoint-every checkpoint; a second run into a folder in use is refused; a
-# stopped run leaves no temporary file and an index of complete frames. Run by ctest:
+# from a --checkpoint-every checkpoint, nonpolar and polar; a second run into a folder in
+# use is refused; a stopped run leaves no temporary file and an index of complete frames.
+# Run by ctest:
 #   scripts/check_flat_blade_restart.sh BUILD/examples/example_03_flat_blade WORK_DIR
 set -euo pipefail
 program=$1
@@ -43,7 +44,19 @@ cp -r straight from_checkpoint
 rm -f from_checkpoint/.cosmpm-lock
 "$program" "${case_options[@]}" --out from_checkpoint --restart true > from_checkpoint.log 2>&1 || fail "the restart from a checkpoint: $(tail -3 from_checkpoint.log)"
 
-/usr/bin/python3 - straight stopped from_checkpoint <<'PYTHON'
+# Polar (Cosserat: micro-rotations and their settings): a complete run, then a restart from
+# its last checkpoint.
+polar_options=(--case "$root/examples/03_flat_blade/cases/smoke.case" --polar true --travel 0.004
+  --equilibrium-time 0.005 --average-to 0.004 --profile-at 0.002 --frame-interval 0.001
+  --checkpoint-every 0.0015 --threads 1)
+"$program" "${polar_options[@]}" --out polar > polar.log 2>&1 || fail "the polar run: $(tail -3 polar.log)"
+cp -r polar polar_from_checkpoint
+rm -f polar_from_checkpoint/.cosmpm-lock
+"$program" "${polar_options[@]}" --out polar_from_checkpoint --restart true > polar_restart.log 2>&1 || fail "the polar restart: $(tail -3 polar_restart.log)"
+grep -q "^polar = true" polar_from_checkpoint/case.used || fail "the polar run's case.used does not say polar"
+
+compare() {
+/usr/bin/python3 - "$@" <<'PYTHON'
 import csv, pathlib, sys
 import h5py, numpy as np
 
@@ -88,4 +101,7 @@ for other in map(pathlib.Path, sys.argv[2:]):
 if problems:
     sys.exit("check_flat_blade_restart: FAILED:\n  " + "\n  ".join(problems))
 PYTHON
+}
+compare straight stopped from_checkpoint
+compare polar polar_from_checkpoint
 echo "check_flat_blade_restart: stopped and restarted runs wrote what the straight run wrote" >&2

@@ -40,7 +40,7 @@ void blade_correction(benchmark::State& state) {
                               1e-5,
                               0.3,
                               contact::Phase::end_velocity,
-                              nullptr,
+                              {},
                               contact::node_reach<shape::Linear>()};
     law.correct(view);
     benchmark::DoNotOptimize(velocity.data());

@@ -10,6 +10,7 @@
 #include <string>
 #include <vector>
 
+#include "batch_run.hpp"
 #include "cosmpm/material.hpp"
 
 namespace {
@@ -17,6 +18,7 @@ namespace {
 using namespace cosmpm::material;
 using cosmpm::CosseratTensor2D;
 using cosmpm::SymTensor2D;
+using cosmpm::material::benchmarks::run;
 
 constexpr std::size_t kCount = 4096;
 constexpr double kE = 2.76e6, kNu = 0.2, kPhi = 26.0, kPsi = 2.0;  // corn, Table 1
@@ -66,33 +68,6 @@ ClassicalBatch classical_batch(Mix mix) {
   batch.state.assign(kCount, PlasticState{});
   batch.plastic_fraction = double(plastic) / double(kCount);
   return batch;
-}
-
-// batched: the copies first, then one model.update_batch call over the whole batch.
-template <bool batched = false, class Model, class Batch>
-void run(benchmark::State& bench, const Model& model, Batch& batch) {
-  // The array pointers are read once: the loop's stores would otherwise make the compiler
-  // reload them through the batch for every point.
-  const auto* const old = batch.old.data();
-  auto* const work = batch.work.data();
-  auto* const state = batch.state.data();
-  const auto* const increment = batch.increment.data();
-  for (auto _ : bench) {
-    if constexpr (batched) {
-      for (std::size_t i = 0; i < kCount; ++i) work[i] = old[i];
-      model.update_batch(batch.work, batch.state, batch.increment);
-    } else {
-      for (std::size_t i = 0; i < kCount; ++i) {
-        work[i] = old[i];
-        model.update(work[i], state[i], increment[i]);
-      }
-    }
-    benchmark::DoNotOptimize(work);
-    benchmark::ClobberMemory();
-  }
-  bench.counters["ns_per_call"] =
-      benchmark::Counter(double(bench.iterations()) * double(kCount),
-                         benchmark::Counter::kIsRate | benchmark::Counter::kInvert);
 }
 
 void BM_LinearElastic(benchmark::State& bench) {

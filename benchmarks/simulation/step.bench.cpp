@@ -35,16 +35,22 @@ material::CosseratDruckerPrager<> make_model(
 }
 
 template <class Kernel, class Scheme = integrator::USL,
-          class Continuum = continuum::Classical<Elastic>>
+          class Continuum = continuum::Classical<Elastic>, class Transfer = transfer::FlipBlend>
 auto make_block(int threads) {
-  using Sim = Simulation<2, Kernel, Continuum, contact::SingleField, Scheme>;
+  using Sim = Simulation<2, Kernel, Continuum, contact::SingleField, Scheme, Transfer>;
   using Model = typename Continuum::model_type;
   const grid::Grid<2> grid(Vec<2>(0.0, 0.0), Vec<2>(1.2, 0.5), {120, 50});
   SimulationParameters<2> parameters;
   parameters.gravity = Vec<2>(0.0, -9.81);
   parameters.threads = threads;
-  if constexpr (Continuum::is_cosserat) parameters.micro_inertia = 12.5e-6;
-  Sim sim(grid, make_model(std::type_identity<Model>{}), parameters);
+  const Continuum continuum = [] {
+    if constexpr (Continuum::is_cosserat) {
+      return Continuum(make_model(std::type_identity<Model>{}), {.micro_inertia = 12.5e-6});
+    } else {
+      return Continuum(make_model(std::type_identity<Model>{}));
+    }
+  }();
+  Sim sim(grid, continuum, parameters);
   // Keep the particles a cell away from the side faces, where the splines' boundary
   // treatment would otherwise differ from the interior's.
   const auto seeding = particles::seed_box(grid, Vec<2>(0.0, 0.0), Vec<2>(1.2, 0.35), 2);
@@ -59,9 +65,9 @@ auto make_block(int threads) {
 }
 
 template <class Kernel, class Scheme = integrator::USL,
-          class Continuum = continuum::Classical<Elastic>>
+          class Continuum = continuum::Classical<Elastic>, class Transfer = transfer::FlipBlend>
 void full_step(benchmark::State& state) {
-  auto sim = make_block<Kernel, Scheme, Continuum>(static_cast<int>(state.range(0)));
+  auto sim = make_block<Kernel, Scheme, Continuum, Transfer>(static_cast<int>(state.range(0)));
   const double dt = sim.time_step();
   for (auto _ : state) sim.step(dt);
   state.SetItemsProcessed(state.iterations() * sim.particles().size());
@@ -133,6 +139,11 @@ BENCHMARK(full_step<shape::Linear, integrator::MUSL,
 BENCHMARK(
     full_step<shape::Linear, integrator::USL, continuum::Cosserat<material::CosseratElastic<>>>)
     ->Name("step/linear/USL/cosserat_elastic")
+    ->Arg(1);
+// APIC against the FLIP blend, same particles and kernel.
+BENCHMARK(full_step<shape::QuadraticBSpline, integrator::USL, continuum::Classical<Elastic>,
+                    transfer::APIC>)
+    ->Name("step/quadratic_bspline/USL/apic")
     ->Arg(1);
 BENCHMARK(stage_map_to_grid)->Name("stage/linear/map_to_grid");
 BENCHMARK(stage_update_grid)->Name("stage/linear/update_grid");

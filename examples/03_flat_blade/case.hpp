@@ -40,6 +40,8 @@ struct Case {
   // without bound at nodes of tiny mass; at the blade's top corner that blew a surface
   // particle off after 8 mm of travel (docs/theory/mpm.md, "Which to use").
   std::string integrator = "musl";
+  std::string transfer = "flip-blend";  // the paper's FLIP (--flip sets the blend)
+  std::string antilocking = "none";
   // Rig and blade (Sect. 2): rig 1.2 m x 0.7 m, blade 350 mm high moving at 10 mm/s.
   double grid_length = 1.2;  // m
   double grid_height = 0.7;  // m
@@ -60,6 +62,7 @@ struct Case {
   double damping = 0.0;              // local damping while cutting
   double flip_fraction = 1.0;
   double cfl = 0.5;
+  std::string stray_particles = "stop";  // a particle leaving the rig stops the run
   // Output.
   double frame_interval = 0.005;  // m of blade travel between ParaView frames
   double average_from = 0.015;    // m: the paper averages the draft over 15-35 mm
@@ -91,6 +94,8 @@ struct Case {
     if (material == "drucker-prager") name << "_dp";
     if (shape != "linear") name << "_" << shape;
     if (integrator != "musl") name << "_" << integrator;
+    if (transfer != "flip-blend") name << "_" << transfer;
+    if (antilocking != "none") name << "_" << antilocking;
     return name.str();
   }
 };
@@ -136,6 +141,12 @@ inline void declare_options(Options& o, Case& c) {
   o.choice("integrator", c.integrator, {"musl", "usl", "usf"},
            "update scheme (the paper: usl, which blows up at the blade's corner; see "
            "docs/theory/mpm.md)");
+  o.choice("transfer", c.transfer, {"flip-blend", "apic"},
+           "particle velocity transfer: flip-blend (PIC/FLIP by --flip) or apic (affine, not "
+           "with --shape linear)");
+  o.choice("antilocking", c.antilocking, {"none", "fbar"},
+           "volumetric anti-locking of the nonpolar continuum: none or fbar (F-bar, the "
+           "cell-averaged volumetric strain rate)");
   o.group("Rig and blade (Sect. 2 of the paper)");
   o.real("grid-length", c.grid_length, {0.0, 100.0, Bounds::right_closed}, "m",
          "length of the rig (the grid)");
@@ -184,6 +195,9 @@ inline void declare_options(Options& o, Case& c) {
          "time step as a fraction of the stable one");
   o.real("flip", c.flip_fraction, {0.0, 1.0, Bounds::closed}, "",
          "FLIP share of the velocity update (1: FLIP, 0: PIC)");
+  o.choice("stray-particles", c.stray_particles, {"stop", "freeze", "remove"},
+           "a particle that leaves the rig (the grid): stop the run naming it, or take it out "
+           "of the simulation, kept (freeze) or dropped (remove), counted in the summary");
   o.real("equilibrium-time", c.equilibrium_time, {0.0, 100.0, Bounds::closed}, "s",
          "damped settling under K0 before the blade moves");
   o.real("equilibrium-damping", c.equilibrium_damping, {0.0, 1.0, Bounds::left_closed}, "",
@@ -252,6 +266,14 @@ inline void validate(const Options& o, Case& c) {
   }
   if (c.material == "mohr-coulomb" && o.changed("cone")) {
     o.fail("cone", "applies to the Drucker-Prager models only (--material is mohr-coulomb)");
+  }
+  if (c.transfer == "apic" && c.flip_fraction != 1.0) {
+    o.fail("flip",
+           "blends FLIP into --transfer apic, which has no FLIP part; leave --flip at 1 "
+           "or use --transfer flip-blend");
+  }
+  if (c.polar && c.antilocking != "none") {
+    o.fail("antilocking", "applies to nonpolar soil only (--polar true); leave it at none");
   }
   if (c.dilatancy_angle_deg > c.friction_angle_deg) {
     o.fail("psi", "exceeds " + o.describe("phi") + "; lower --psi or raise --phi");

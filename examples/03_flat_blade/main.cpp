@@ -104,8 +104,7 @@ int main(int argc, char** argv) {
     flat_blade::declare_options(options, c);
     if (options.parse(argc, argv) == io::Options::Outcome::help) {
       std::fputs(options.help().c_str(), stdout);
-      std::printf("\nCompositions built in (--material --shape --integrator):%s\n",
-                  flat_blade::compositions_text().c_str());
+      std::printf("\nCompositions built in:%s\n", flat_blade::compositions_text().c_str());
       return 0;
     }
     flat_blade::validate(options, c);
@@ -125,8 +124,10 @@ int main(int argc, char** argv) {
                                                  : "nonpolar (Mohr-Coulomb)",
                 c.soil_depth * 1000, c.cells_x, c.cells_y, c.dilatancy_angle_deg,
                 c.wall_friction_deg);
-    if (c.shape != "linear" || c.integrator != "musl") {
-      std::printf("  shape functions %s, integrator %s\n", c.shape.c_str(), c.integrator.c_str());
+    if (c.shape != "linear" || c.integrator != "musl" || c.transfer != "flip-blend" ||
+        c.antilocking != "none") {
+      std::printf("  shape functions %s, integrator %s, transfer %s, anti-locking %s\n",
+                  c.shape.c_str(), c.integrator.c_str(), c.transfer.c_str(), c.antilocking.c_str());
     }
     io::StopRequest stop;
     const auto mode = c.restart   ? io::RunDirectory::Mode::resume
@@ -180,7 +181,9 @@ int main(int argc, char** argv) {
                                                            "profile_at_m",
                                                            "blade_face_x_m",
                                                            "blade_speed_m_per_s",
-                                                           "cutting_start_s"});
+                                                           "cutting_start_s",
+                                                           "stray_particles",
+                                                           "stray_mass_kg_per_m"});
       summary.write_row({c.soil_depth,
                          static_cast<double>(c.cells_x),
                          static_cast<double>(c.cells_y),
@@ -200,7 +203,9 @@ int main(int argc, char** argv) {
                          c.profile_at,
                          c.blade_start + c.blade_thickness,
                          c.blade_speed,
-                         c.equilibrium_time});
+                         c.equilibrium_time,
+                         static_cast<double>(o.stray_particles),
+                         o.stray_mass});
     }
     std::printf("  %ld particles, %ld steps of %.3g s, %.1f s of computing\n", o.particles, o.steps,
                 o.time_step, o.run_seconds);
@@ -212,6 +217,10 @@ int main(int argc, char** argv) {
                 o.sokolovski_per_width, o.sokolovski_per_width * c.rig_width, difference);
     std::printf("  average vertical force: %.1f N/m (Sokolovski %.1f N/m)\n",
                 o.average_vertical_per_width, o.sokolovski_vertical_per_width);
+    if (o.stray_particles > 0) {
+      std::printf("  %ld particles (%.3g kg/m) left the rig and were %s\n", o.stray_particles,
+                  o.stray_mass, c.stray_particles == "freeze" ? "frozen" : "removed");
+    }
     std::printf("results in %s: %s\n", out.c_str(), written_list(*folder).c_str());
     return 0;
   } catch (const Error& error) {

@@ -33,18 +33,19 @@ namespace detail {
 using namespace cosmpm;
 
 // Classical<M> may not even be named for a Cosserat model: picked by specialisation.
-template <class Model, bool polar = Model::is_cosserat>
+template <class Model, class AntiLocking, bool polar = Model::is_cosserat>
 struct ContinuumFor {
-  using type = continuum::Classical<Model>;
+  using type = continuum::Classical<Model, AntiLocking>;
 };
-template <class Model>
-struct ContinuumFor<Model, true> {
+template <class Model, class AntiLocking>
+struct ContinuumFor<Model, AntiLocking, true> {
   using type = continuum::Cosserat<Model>;
 };
-template <class Model>
-using ContinuumOf = typename ContinuumFor<Model>::type;
-template <class Kernel, class Scheme, class Model>
-using SimulationOf = Simulation<2, Kernel, ContinuumOf<Model>, contact::RigidContact<2>, Scheme>;
+template <class C>
+using SimulationOf =
+    Simulation<2, typename C::kernel,
+               typename ContinuumFor<typename C::model, typename C::antilocking>::type,
+               contact::RigidContact<2>, typename C::scheme, typename C::transfer>;
 
 inline material::DruckerPragerMatching cone_of(const Case& c,
                                                material::DruckerPragerMatching fallback) {
@@ -117,11 +118,12 @@ struct LoopState {
 
 }  // namespace detail
 
-template <class Kernel, class Scheme, class Model>
-Outcome run(const Case& c, RunContext& context, Composition<Kernel, Scheme, Model>) {
+template <class Kernel, class Scheme, class Model, class Transfer, class AntiLocking>
+Outcome run(const Case& c, RunContext& context,
+            Composition<Kernel, Scheme, Model, Transfer, AntiLocking>) {
   using namespace cosmpm;
   namespace fs = std::filesystem;
-  using Sim = detail::SimulationOf<Kernel, Scheme, Model>;
+  using Sim = detail::SimulationOf<Composition<Kernel, Scheme, Model, Transfer, AntiLocking>>;
   constexpr bool polar = Model::is_cosserat;
   const io::Options& options = context.options;
 
@@ -159,8 +161,24 @@ Outcome run(const Case& c, RunContext& context, Composition<Kernel, Scheme, Mode
   parameters.flip_fraction = c.flip_fraction;
   parameters.cfl = c.cfl;
   parameters.threads = c.threads;
-  if constexpr (polar) parameters.micro_inertia = c.micro_inertia;
-  Sim sim(grid, model, parameters, std::move(blade_contact));
+  parameters.stray_particles = c.stray_particles == "freeze"   ? StrayParticles::freeze
+                               : c.stray_particles == "remove" ? StrayParticles::remove
+                                                               : StrayParticles::stop;
+  using Continuum = typename Sim::continuum_type;
+  const Continuum continuum = [&] {
+    if constexpr (polar) {
+      // Rotation held on the rig floor and sides, as the paper does.
+      using BC = grid::BoundaryConditions<2>;
+      continuum::CosseratSettings settings{.micro_inertia = c.micro_inertia};
+      for (int face : {BC::face(1, false), BC::face(0, false), BC::face(0, true)}) {
+        settings.rotation_fixed[static_cast<std::size_t>(face)] = true;
+      }
+      return Continuum(model, settings);
+    } else {
+      return Continuum(model);
+    }
+  }();
+  Sim sim(grid, continuum, parameters, std::move(blade_contact));
 
   // The soil layer in front of the blade, at rest under K0 = 1 - sin(phi) (Jaky).
   const auto soil =
@@ -185,11 +203,6 @@ Outcome run(const Case& c, RunContext& context, Composition<Kernel, Scheme, Mode
   bc.set(BC::face(1, false), grid::BoundaryKind::fixed);  // rig floor
   bc.set(BC::face(0, false), grid::BoundaryKind::roller);
   bc.set(BC::face(0, true), grid::BoundaryKind::roller);
-  if constexpr (polar) {
-    for (int face : {BC::face(1, false), BC::face(0, false), BC::face(0, true)}) {
-      bc.set_rotation_fixed(face, true);
-    }
-  }
 
   // The reference: Sokolovski's passive pressure on a vertical wall of height h.
   const auto reference = analysis::sokolovski_passive({.friction_angle_deg = c.friction_angle_deg,
@@ -344,6 +357,8 @@ Outcome run(const Case& c, RunContext& context, Composition<Kernel, Scheme, Mode
   outcome.time_step = dt;
   outcome.stopped = stopped;
   outcome.travel = reached;
+  outcome.stray_particles = static_cast<long>(sim.stray_particles().count);
+  outcome.stray_mass = sim.stray_particles().mass;
   if (!stopped && !state.profile_written) {
     // check_promises rules this out; a failure here is a bug, not bad input.
     throw Error("internal: the blade stress profile at --profile-at was not taken");

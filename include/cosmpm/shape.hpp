@@ -7,3 +7,5 @@
 #include "cosmpm/shape/quadratic_bspline.hpp"
 #include "cosmpm/shape/separable.hpp"
 #include "cosmpm/shape/stencil.hpp"
+#include "cosmpm/shape/stencil_grid.hpp"
+#include "cosmpm/shape/transfer.hpp"

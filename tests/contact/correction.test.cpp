@@ -27,12 +27,27 @@ struct OneNode {
     // Material above the node, so the mass grows upwards (away from the floor).
     mass[static_cast<std::size_t>(grid.node_index({2, 3}))] = 4.0;
   }
+  contact::GridView<2> view() {
+    return {grid, mass, velocity, 1e-12, 0.1, 0.0, contact::Phase::end_velocity, spin, 1.0};
+  }
   Vec<2> correct(const Vec<2>& trial) {
     velocity[static_cast<std::size_t>(node)] = trial;
-    contact::GridView<2> view{grid,  mass, velocity, 1e-12, 0.1, 0.0, contact::Phase::end_velocity,
-                              &spin, 1.0};
-    law.correct(view);
+    auto v = view();
+    law.correct(v);
     return velocity[static_cast<std::size_t>(node)];
+  }
+  // A face condition on the node (the floor's face y = 0 here), then the law's look at it.
+  void condition(grid::BoundaryKind kind, int axis = 1) {
+    grid::BoundaryConditions<2> conditions;
+    conditions.set(grid::BoundaryConditions<2>::face(axis, false), kind);
+    std::vector<unsigned char> imposed(velocity.size(), 0);
+    const unsigned components = grid::BoundaryConditions<2>::apply(
+        conditions[grid::BoundaryConditions<2>::face(axis, false)], axis, false,
+        velocity[static_cast<std::size_t>(node)]);
+    imposed[static_cast<std::size_t>(node)] = static_cast<unsigned char>(components);
+    auto v = view();
+    v.imposed = imposed;
+    law.conditions_applied(v);
   }
 };
 
@@ -81,6 +96,32 @@ TEST_CASE("correction: relative to a moving and rotating body") {
   CHECK(turning.correct(Vec<2>(1.0, -1.0)).isApprox(Vec<2>(0.5, 0.0)));
   // The Cosserat spin of a node in contact is held at the body's angular velocity.
   CHECK(turning.spin[static_cast<std::size_t>(turning.node)] == doctest::Approx(0.4));
+}
+
+TEST_CASE("correction: the recorded force is what the node received after the conditions") {
+  // Slip as in the first case: corrected velocity (0.5, 0), force on the material (-10, 20) N.
+  OneNode fixed(contact::Interface::coulomb(0.5), Vec<2>::Zero());
+  fixed.correct(Vec<2>(1.0, -1.0));
+  REQUIRE(fixed.law.force_on_material(0).isApprox(Vec<2>(-10.0, 20.0)));
+  // A fixed face then holds the node at rest: the face took the node, the body applied
+  // nothing there, in the record, its normal and shear parts and the body's total.
+  fixed.condition(grid::BoundaryKind::fixed);
+  CHECK(fixed.law.contact_nodes()[0].force_on_material.isZero());
+  CHECK(fixed.law.contact_nodes()[0].normal_force == 0.0);
+  CHECK(fixed.law.contact_nodes()[0].shear_force == 0.0);
+  CHECK(fixed.law.force_on_material(0).isZero());
+  // A roller on a face normal to x (as if the node were on a side wall) imposes only x: the
+  // floor's normal (y) part stays.
+  OneNode roller(contact::Interface::coulomb(0.5), Vec<2>::Zero());
+  roller.correct(Vec<2>(1.0, -1.0));
+  roller.condition(grid::BoundaryKind::roller, 0);
+  CHECK(roller.law.force_on_material(0).isApprox(Vec<2>(0.0, 20.0)));
+  CHECK(roller.law.contact_nodes()[0].normal_force == doctest::Approx(20.0));
+  // A free face imposes nothing: the record is unchanged.
+  OneNode free(contact::Interface::coulomb(0.5), Vec<2>::Zero());
+  free.correct(Vec<2>(1.0, -1.0));
+  free.condition(grid::BoundaryKind::free);
+  CHECK(free.law.force_on_material(0).isApprox(Vec<2>(-10.0, 20.0)));
 }
 
 TEST_CASE("correction: node reach per kernel") {

@@ -2,7 +2,9 @@
 
 #include <cmath>
 #include <random>
+#include <vector>
 
+#include "conformance.hpp"
 #include "cosmpm/material/cosserat_drucker_prager.hpp"
 #include "cosmpm/material/cosserat_elastic.hpp"
 #include "cosmpm/material/drucker_prager.hpp"
@@ -17,6 +19,7 @@ using cosmpm::material::DruckerPrager;
 using cosmpm::material::DruckerPragerMatching;
 using cosmpm::material::PlasticState;
 namespace testing = cosmpm::material::testing;
+namespace conformance = cosmpm::material::conformance;
 
 namespace {
 
@@ -311,4 +314,57 @@ TEST_CASE("CosseratDruckerPrager: Gc = 0 with a1 != a2 and psi = 0 (a mode that 
     }
   }
   CHECK(plastic > 500);
+}
+
+TEST_CASE("Cosserat models: the conformance kit") {
+  // The paper's parameters and models with three, two and one distinct mode rates (which the
+  // batch merges), Gc = 0 among them; tangent steps: the cone with every mode active (two
+  // trials) and the apex.
+  using Model = CosseratDruckerPrager<double>;
+  const CosseratElastic<double> elastic(kE, kNu, kGc, kL);
+  CosseratTensor2D<double> old;
+  old << -2e3, -1.5e3, -1.8e3, 300, 100, 2.0, -1.0;
+  CosseratTensor2D<double> t_cone, t_cone2, t_apex;
+  t_cone << -10e3, -40e3, -20e3, 3e3, -1e3, 40.0, -30.0;
+  t_cone2 << -5e3, -8e3, -30e3, -4e3, 2e3, -10.0, 80.0;
+  t_apex << 9e3, 8e3, 7e3, 100, -50, 1.0, 0.5;
+  {
+    const auto steps = conformance::random_steps(elastic, 1000, 1, 5e3, 1e-3, kL);
+    const std::vector<conformance::Step<CosseratElastic<double>>> tangent_steps{
+        {old, {}, increment_to(elastic, old, t_cone)}};
+    const auto report =
+        conformance::check_constitutive_model(elastic, elastic, steps, tangent_steps);
+    CHECK_MESSAGE(report.passed(), report.summary());
+    CHECK(report.elastic == 1000);
+  }
+  struct Case {
+    double gc;
+    cosmpm::material::CosseratInvariantCoefficients<double> a;
+    double psi, cohesion;
+  };
+  unsigned seed = 2;
+  for (const Case& c :
+       {Case{kGc, {}, 2.0, 0.0}, Case{20 * kGc, {}, 10.0, 1e3},
+        Case{0.0, {0.25, 0.25, 0.5}, 2.0, 300.0}, Case{kGc, {0.375, 0.125, 0.5}, 26.0, 1e3}}) {
+    const Model model({.youngs_modulus = kE,
+                       .poisson_ratio = kNu,
+                       .cosserat_shear_modulus = c.gc,
+                       .characteristic_length = kL,
+                       .friction_angle_deg = kPhi,
+                       .dilatancy_angle_deg = c.psi,
+                       .cohesion = c.cohesion,
+                       .invariant = c.a});
+    const CosseratElastic<double> part(kE, kNu, c.gc, kL);
+    // Steps from the elastic law's inverse need Gc > 0; for Gc = 0 the increments of the
+    // Gc = 2G model give trials of the same size.
+    const CosseratElastic<double>& aim = c.gc > 0 ? part : elastic;
+    std::vector<conformance::Step<Model>> tangent_steps;
+    for (const auto& trial : {t_cone, t_cone2, t_apex})
+      tangent_steps.push_back({old, PlasticState{}, increment_to(aim, old, trial)});
+    const auto steps = conformance::random_steps(model, 1500, seed++, 5e3, 1e-3, kL);
+    const auto report = conformance::check_constitutive_model(model, part, steps, tangent_steps);
+    CHECK_MESSAGE(report.passed(), report.summary());
+    CHECK(report.elastic > 200);
+    CHECK(report.plastic > 200);
+  }
 }

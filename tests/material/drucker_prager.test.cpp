@@ -3,7 +3,10 @@
 #include <array>
 #include <cmath>
 #include <random>
+#include <utility>
+#include <vector>
 
+#include "conformance.hpp"
 #include "cosmpm/material/drucker_prager.hpp"
 #include "cosmpm/material/linear_elastic.hpp"
 #include "test_helpers.hpp"
@@ -13,6 +16,7 @@ using cosmpm::material::DruckerPrager;
 using cosmpm::material::DruckerPragerMatching;
 using cosmpm::material::PlasticState;
 namespace testing = cosmpm::material::testing;
+namespace conformance = cosmpm::material::conformance;
 
 namespace {
 
@@ -200,6 +204,40 @@ TEST_CASE("DruckerPrager: plane-strain biaxial compression reaches the matched p
     if (matching == DruckerPragerMatching::plane_strain) {
       const double k = (1 + sin_deg(kPhi)) / (1 - sin_deg(kPhi));
       CHECK(stress[0] - stress[1] == doctest::Approx((k - 1) * confining).epsilon(1e-6));
+    }
+  }
+}
+
+TEST_CASE("DruckerPrager: the conformance kit") {
+  // Every matching, with and without dilatancy and cohesion; tangent steps on the cone (two
+  // trials, kPa) and at the apex, away from the boundary between them.
+  using Model = DruckerPrager<double>;
+  const cosmpm::material::LinearElastic<double> elastic(
+      {.youngs_modulus = kE, .poisson_ratio = kNu});
+  const SymTensor2D<double> old(-2e3, -1.5e3, -1.8e3, 300);
+  unsigned seed = 1;
+  for (const auto matching : kMatchings) {
+    for (const auto& [psi, cohesion] : {std::pair{2.0, 0.0}, std::pair{10.0, 1e3}}) {
+      const Model model({.youngs_modulus = kE,
+                         .poisson_ratio = kNu,
+                         .friction_angle_deg = kPhi,
+                         .dilatancy_angle_deg = psi,
+                         .cohesion = cohesion,
+                         .matching = matching});
+      std::vector<conformance::Step<Model>> tangent_steps;
+      for (const auto& trial : {SymTensor2D<double>(-10e3, -40e3, -20e3, 3e3),
+                                SymTensor2D<double>(-5e3, -8e3, -30e3, -4e3),
+                                SymTensor2D<double>(9e3, 8e3, 7e3, 100)}) {
+        tangent_steps.push_back(
+            {old, PlasticState{},
+             testing::increment_to(model.shear_modulus(), model.lame_lambda(), old, trial)});
+      }
+      const auto steps = conformance::random_steps(model, 1500, seed++, 5e3, 1e-3);
+      const auto report =
+          conformance::check_constitutive_model(model, elastic, steps, tangent_steps);
+      CHECK_MESSAGE(report.passed(), report.summary());
+      CHECK(report.elastic > 200);
+      CHECK(report.plastic > 200);
     }
   }
 }

@@ -4,9 +4,12 @@
 #include <array>
 #include <cmath>
 #include <random>
+#include <utility>
+#include <vector>
 
 #include <Eigen/Eigenvalues>
 
+#include "conformance.hpp"
 #include "cosmpm/material/linear_elastic.hpp"
 #include "cosmpm/material/mohr_coulomb.hpp"
 #include "test_helpers.hpp"
@@ -16,6 +19,7 @@ using cosmpm::material::MohrCoulomb;
 using cosmpm::material::MohrCoulombRegion;
 using cosmpm::material::PlasticState;
 namespace testing = cosmpm::material::testing;
+namespace conformance = cosmpm::material::conformance;
 
 namespace {
 
@@ -367,5 +371,65 @@ TEST_CASE("MohrCoulomb: the scalar hot path equals the general principal-space p
       CHECK(fast_state.plastic_shear_strain ==
             doctest::Approx(general_state.plastic_shear_strain).epsilon(1e-10));
     }
+  }
+}
+
+TEST_CASE("MohrCoulomb: the conformance kit") {
+  // Corn (c = 0, the flat blade's model), a cohesive one with more dilatancy, and one with a
+  // tension cut-off below the apex; tangent steps one per region, aimed at hand-picked trials
+  // (kPa) away from the region boundaries.
+  using Model = MohrCoulomb<double>;
+  struct Case {
+    Model model;
+    std::vector<std::pair<SymTensor2D<double>, MohrCoulombRegion>> tangent_trials;
+  };
+  const SymTensor2D<double> old(-2e3, -1.5e3, -1.8e3, 300);
+  const auto aim = [](double a, double b, double zz, double angle) {
+    return testing::rotate(SymTensor2D<double>(a, b, zz, 0), angle);
+  };
+  const std::vector<std::pair<SymTensor2D<double>, MohrCoulombRegion>> cone_trials{
+      {aim(-20e3, -21e3, -10e3, 0.2), MohrCoulombRegion::elastic},
+      {aim(-10e3, -40e3, -20e3, 0.3), MohrCoulombRegion::plane},
+      {aim(-10.5e3, -40e3, -10e3, 0.5), MohrCoulombRegion::compression_edge},
+      {aim(-10e3, -39e3, -40e3, -0.4), MohrCoulombRegion::extension_edge},
+      {aim(8e3, 5e3, 6e3, 0.1), MohrCoulombRegion::apex}};
+  const std::vector<Case> cases{
+      {Model({.youngs_modulus = kE,
+              .poisson_ratio = kNu,
+              .friction_angle_deg = kPhi,
+              .dilatancy_angle_deg = 2}),
+       {cone_trials[0], cone_trials[1], cone_trials[2], cone_trials[3]}},
+      {Model({.youngs_modulus = kE,
+              .poisson_ratio = kNu,
+              .friction_angle_deg = kPhi,
+              .dilatancy_angle_deg = 10,
+              .cohesion = 1e3}),
+       cone_trials},
+      {Model({.youngs_modulus = kE,
+              .poisson_ratio = kNu,
+              .friction_angle_deg = kPhi,
+              .dilatancy_angle_deg = 2,
+              .cohesion = 10e3,
+              .tension_cutoff = 1e3}),
+       {{SymTensor2D<double>(5e3, -2e3, -4e3, 1e3), MohrCoulombRegion::tension},
+        {SymTensor2D<double>(5e3, 4e3, -4e3, 500), MohrCoulombRegion::tension}}}};
+  const cosmpm::material::LinearElastic<double> elastic(
+      {.youngs_modulus = kE, .poisson_ratio = kNu});
+  unsigned seed = 1;
+  for (const auto& [model, trials] : cases) {
+    const auto steps = conformance::random_steps(model, 2000, seed++, 5e3, 1e-3);
+    std::vector<conformance::Step<Model>> tangent_steps;
+    for (const auto& [trial, region] : trials) {
+      const SymTensor2D<double> de =
+          testing::increment_to(model.shear_modulus(), model.lame_lambda(), old, trial);
+      SymTensor2D<double> stress = old;
+      PlasticState state;
+      REQUIRE(model.update_region(stress, state, de) == region);
+      tangent_steps.push_back({old, PlasticState{}, de});
+    }
+    const auto report = conformance::check_constitutive_model(model, elastic, steps, tangent_steps);
+    CHECK_MESSAGE(report.passed(), report.summary());
+    CHECK(report.elastic > 300);  // both kinds of step, well represented
+    CHECK(report.plastic > 300);
   }
 }

@@ -1,9 +1,10 @@
 #pragma once
-// Shared helpers of the material tests: finite-difference tangents, rotations, random states.
+// Shared helpers of the material tests: finite-difference tangents, rotations, aimed increments.
 #include <Eigen/Core>
+#include <Eigen/Geometry>
 #include <cmath>
-#include <random>
 
+#include "conformance.hpp"
 #include "cosmpm/core/types.hpp"
 
 namespace cosmpm::material::testing {
@@ -11,56 +12,25 @@ namespace cosmpm::material::testing {
 // Central finite-difference tangent d stress / d strain increment of any model, from the same
 // old stress and state. The step is `relative_step` times the largest increment component.
 template <class Model>
-Eigen::Matrix<double, Model::stress_type::RowsAtCompileTime, Model::stress_type::RowsAtCompileTime>
-finite_difference_tangent(const Model& model, const typename Model::stress_type& old_stress,
-                          const typename Model::state_type& old_state,
-                          const typename Model::strain_type& de, double relative_step = 1e-6) {
-  constexpr int n = Model::stress_type::RowsAtCompileTime;
-  Eigen::Matrix<double, n, n> tangent;
-  const double h = relative_step * std::max(de.cwiseAbs().maxCoeff(), 1e-12);
-  for (int j = 0; j < n; ++j) {
-    typename Model::strain_type plus = de, minus = de;
-    plus[j] += h;
-    minus[j] -= h;
-    typename Model::stress_type s_plus = old_stress, s_minus = old_stress;
-    typename Model::state_type st_plus = old_state, st_minus = old_state;
-    model.update(s_plus, st_plus, plus);
-    model.update(s_minus, st_minus, minus);
-    tangent.col(j) = (s_plus - s_minus) / (2 * h);
-  }
-  return tangent;
+typename Model::tangent_type finite_difference_tangent(
+    const Model& model, const typename Model::stress_type& old_stress,
+    const typename Model::state_type& old_state, const typename Model::strain_type& de,
+    double relative_step = 1e-6) {
+  return conformance::detail::finite_difference_tangent(
+      model, conformance::Step<Model>{old_stress, old_state, de}, relative_step);
 }
 
-// In-plane rotation by `angle` of [xx, yy, zz, xy] (stress or tensor-shear strain).
-inline SymTensor2D<double> rotate(const SymTensor2D<double>& a, double angle) {
-  Eigen::Matrix2d r;
-  r << std::cos(angle), -std::sin(angle), std::sin(angle), std::cos(angle);
-  Eigen::Matrix2d m;
-  m << a[0], a[3], a[3], a[1];
-  const Eigen::Matrix2d out = r * m * r.transpose();
-  return {out(0, 0), out(1, 1), a[2], out(0, 1)};
-}
-
-// In-plane rotation of a Cosserat stress or deformation: the non-symmetric 2x2 block
-// [[xx, xy], [yx, yy]] rotates as a tensor, the couple-stress / curvature pair as a vector.
-inline CosseratTensor2D<double> rotate(const CosseratTensor2D<double>& a, double angle) {
-  Eigen::Matrix2d r;
-  r << std::cos(angle), -std::sin(angle), std::sin(angle), std::cos(angle);
-  Eigen::Matrix2d m;
-  m << a[0], a[3], a[4], a[1];
-  const Eigen::Matrix2d out = r * m * r.transpose();
-  const Eigen::Vector2d v = r * Eigen::Vector2d(a[5], a[6]);
-  CosseratTensor2D<double> b;
-  b << out(0, 0), out(1, 1), a[2], out(0, 1), out(1, 0), v[0], v[1];
-  return b;
+// In-plane rotation by `angle` of [xx, yy, zz, xy] (stress or tensor-shear strain), or of a
+// Cosserat stress or deformation (the non-symmetric 2x2 block as a tensor, the couple stress or
+// curvature as a vector).
+template <class Vector>
+Vector rotate(const Vector& a, double angle) {
+  return conformance::rotated(
+      a, Eigen::AngleAxisd(angle, Eigen::Vector3d::UnitZ()).toRotationMatrix());
 }
 
 // Relative difference of two matrices in the max norm, scaled by the larger one.
-template <class A, class B>
-double relative_difference(const A& a, const B& b) {
-  const double scale = std::max(a.cwiseAbs().maxCoeff(), b.cwiseAbs().maxCoeff());
-  return (a - b).cwiseAbs().maxCoeff() / std::max(scale, 1e-300);
-}
+using conformance::detail::relative_difference;
 
 }  // namespace cosmpm::material::testing
 

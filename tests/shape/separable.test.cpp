@@ -1,5 +1,5 @@
-// The engine's transfers (shape/separable.hpp) against the plain sum over the full
-// tensor-product stencil (shape::Stencil, tested on its own in stencil.test.cpp), for every
+// The engine's transfers (shape/separable.hpp, shape/transfer.hpp) against the plain sum over the
+// full tensor-product stencil (shape::Stencil, tested on its own in stencil.test.cpp), for every
 // kernel in 2D and 3D, at random points and next to every face. The contraction changes only
 // the order of the additions: tolerance 1e-12 relative to the sum of the magnitudes of the
 // terms (a few dozen roundings of ~1e-16 each, with margin).
@@ -14,6 +14,7 @@
 #include "cosmpm/grid/grid.hpp"
 #include "cosmpm/shape.hpp"
 #include "cosmpm/shape/separable.hpp"
+#include "cosmpm/shape/transfer.hpp"
 #include "shape_test_support.hpp"
 
 using cosmpm::Index;

@@ -19,6 +19,7 @@ using Polar = continuum::Cosserat<CosseratModel>;
 // row takes the row's mass-weighted velocity and spin) and drives the rough plates: the
 // top row moves at `plate_velocity` without rotating, the bottom row is held.
 struct PeriodicShearPlates {
+  static constexpr const char* name() { return "periodic shear plates (test)"; }
   double plate_velocity = 0.0;
   void correct(contact::GridView<2>& view) {
     const auto& g = view.grid;
@@ -29,16 +30,16 @@ struct PeriodicShearPlates {
         const Index n = g.node_index({i, j});
         mass += view.mass[n];
         momentum += view.mass[n] * view.velocity[n];
-        if (view.spin) spin += view.mass[n] * (*view.spin)[n];
+        if (!view.spin.empty()) spin += view.mass[n] * view.spin[n];
       }
       for (Index i = 0; i < g.nodes(0); ++i) {
         const Index n = g.node_index({i, j});
         if (mass <= view.empty_mass) continue;
         view.velocity[n] = momentum / mass;
-        if (view.spin) (*view.spin)[n] = spin / mass;
+        if (!view.spin.empty()) view.spin[n] = spin / mass;
         if (j == 0 || j == g.nodes(1) - 1) {
           view.velocity[n] = Vec<2>(j == 0 ? 0.0 : plate_velocity, 0.0);
-          if (view.spin) (*view.spin)[n] = 0.0;
+          if (!view.spin.empty()) view.spin[n] = 0.0;
         }
       }
     }
@@ -66,10 +67,11 @@ ShearLayerResult shear_layer(double length_scale) {
   const double h = height / static_cast<double>(cells);
   const grid::Grid<2> grid(Vec<2>(0.0, 0.0), Vec<2>(h, height), {1, cells});
   SimulationParameters<2> parameters;
-  parameters.micro_inertia = 0.125 * 0.01 * 0.01;  // J of 10 mm grains, as in the paper
   parameters.damping = 0.2;
-  Simulation<2, shape::Linear, Polar, PeriodicShearPlates, integrator::USL> sim(
-      grid, CosseratModel(youngs, poisson, cosserat_shear, length_scale), parameters);
+  const Polar polar(CosseratModel(youngs, poisson, cosserat_shear, length_scale),
+                    {.micro_inertia = 0.125 * 0.01 * 0.01});  // J of 10 mm grains, as in the paper
+  Simulation<2, shape::Linear, Polar, PeriodicShearPlates, integrator::USL> sim(grid, polar,
+                                                                                parameters);
   const auto seeding = particles::seed_box(grid, Vec<2>(0.0, 0.0), Vec<2>(h, height), 2);
   sim.add_particles(seeding.positions, seeding.volume, density, seeding.half_width);
 
@@ -135,9 +137,8 @@ namespace {
 // micro-spin is `micro_spin`.
 auto rotating_block(double rate, double micro_spin) {
   const grid::Grid<2> grid(Vec<2>(0.0, 0.0), Vec<2>(1.0, 1.0), {20, 20});
-  SimulationParameters<2> parameters;
-  parameters.micro_inertia = 1.25e-5;
-  Simulation<2, shape::Linear, Polar> sim(grid, CosseratModel(1e6, 0.25, 4e5, 0.01), parameters);
+  Simulation<2, shape::Linear, Polar> sim(
+      grid, Polar(CosseratModel(1e6, 0.25, 4e5, 0.01), {.micro_inertia = 1.25e-5}));
   const auto seeding = particles::seed_box(grid, Vec<2>(0.2, 0.2), Vec<2>(0.8, 0.8), 2);
   sim.add_particles(seeding.positions, seeding.volume, 1000.0, seeding.half_width);
   auto& v = sim.particles().get<particles::field::Velocity<2>>();
@@ -188,9 +189,8 @@ TEST_CASE("the Cosserat grid update conserves angular momentum exactly") {
   // grid's angular momentum sum_i (x_i x m_i v_i + I_i spin_i) is the same before and after
   // the update, to round-off, whatever the (non-symmetric) stress and couple stress.
   const grid::Grid<2> grid(Vec<2>(0.0, 0.0), Vec<2>(1.0, 1.0), {20, 20});
-  SimulationParameters<2> parameters;
-  parameters.micro_inertia = 1.25e-5;
-  Simulation<2, shape::Linear, Polar> sim(grid, CosseratModel(1e5, 0.25, 8e4, 0.02), parameters);
+  Simulation<2, shape::Linear, Polar> sim(
+      grid, Polar(CosseratModel(1e5, 0.25, 8e4, 0.02), {.micro_inertia = 1.25e-5}));
   const auto seeding = particles::seed_box(grid, Vec<2>(0.3, 0.35), Vec<2>(0.7, 0.65), 2);
   sim.add_particles(seeding.positions, seeding.volume, 1000.0, seeding.half_width);
   auto& stress = sim.particles().get<particles::field::Stress<CosseratModel>>();

@@ -71,6 +71,12 @@ TEST_CASE("a particle leaving the grid stops the run with its index and position
   std::string message;
   for (int i = 0; i < 10 && message.empty(); ++i) message = error_of([&] { sim.step(dt); });
   CHECK(message.find("left the grid") != std::string::npos);
+  // Particle 3 is the second lane of a pack of two: the message names it, not its partner 2,
+  // with its real position below the grid.
+  CHECK(message.find("particle 3 at") != std::string::npos);
+  const auto& x = sim.particles().template get<particles::field::Position<2>>();
+  CHECK(x[3][1] < 0.0);
+  CHECK(message.find("with velocity") != std::string::npos);
 }
 
 TEST_CASE("a non-finite stress stops the run") {

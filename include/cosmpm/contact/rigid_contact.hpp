@@ -27,77 +27,15 @@
 #include <utility>
 #include <vector>
 
+#include "cosmpm/contact/concept.hpp"
+#include "cosmpm/contact/grid_view.hpp"
+#include "cosmpm/contact/interface.hpp"
 #include "cosmpm/contact/rigid_body.hpp"
-#include "cosmpm/contact/single_field.hpp"
 #include "cosmpm/core/error.hpp"
 #include "cosmpm/core/types.hpp"
 #include "cosmpm/grid/grid.hpp"
 
 namespace cosmpm::contact {
-
-// How the material meets one rigid body.
-struct Interface {
-  enum class Kind {
-    coulomb,  // Bardenhagen: no interpenetration, free separation, Coulomb friction
-    no_slip,  // single field: the material node moves with the body (no separation either)
-  };
-  Kind kind = Kind::coulomb;
-  double friction_coefficient = 0.0;  // mu = tan(delta), for Kind::coulomb
-  // Cosserat runs: hold the nodal micro-spin at the body's angular velocity at nodes in
-  // contact (the paper's w^c = 0 at the blade); free otherwise.
-  bool hold_rotation = false;
-
-  static Interface coulomb(double mu) {
-    require_non_negative("contact::Interface::coulomb", "friction coefficient mu", mu);
-    Interface i;
-    i.friction_coefficient = mu;
-    return i;
-  }
-  // mu = tan(delta) from the interface friction angle delta in degrees, 0 <= delta < 90.
-  static Interface coulomb_angle(double delta_degrees) {
-    require_in_range("contact::Interface::coulomb_angle", "interface friction angle (degrees)",
-                     delta_degrees, 0.0, 90.0, Bounds::left_closed);
-    return coulomb(std::tan(degrees_to_radians(delta_degrees)));
-  }
-  static Interface frictionless() { return coulomb(0.0); }
-  static Interface no_slip() {
-    Interface i;
-    i.kind = Kind::no_slip;
-    return i;
-  }
-  Interface& with_rotation_held(bool hold = true) {
-    hold_rotation = hold;
-    return *this;
-  }
-};
-
-enum class NodeState { separating, stick, slip, bonded };
-
-// One contact node of the last end-of-step correction.
-template <int Dim>
-struct ContactNode {
-  Index node = 0;
-  int body = 0;
-  int edge = 0;        // the body's edge the node was attributed to
-  double along = 0.0;  // position of the node's foot point along that edge, from its start
-  Vec<Dim> position = Vec<Dim>::Zero();
-  Vec<Dim> normal = Vec<Dim>::Zero();   // the body's outward unit normal used at the node
-  Vec<Dim> tangent = Vec<Dim>::Zero();  // unit vector along the edge (start -> end vertex)
-  double mass = 0.0;
-  Vec<Dim> force_on_material = Vec<Dim>::Zero();  // m (v_corrected - v_trial) / dt
-  double normal_force = 0.0;  // force_on_material . normal: >= 0 when the body pushes
-  double shear_force = 0.0;   // force_on_material . tangent
-  NodeState state = NodeState::separating;
-};
-
-// Traction the material exerts on one stretch of a body's edge, per unit out-of-plane width.
-struct TractionBin {
-  double centre = 0.0;  // along the edge from its start vertex
-  double width = 0.0;
-  double normal_traction = 0.0;  // pressure on the body's face (compression positive)
-  double shear_traction = 0.0;   // on the body along the edge tangent
-  int nodes = 0;                 // contact nodes pressing in the bin
-};
 
 template <int Dim>
 class RigidContact {
@@ -204,6 +142,24 @@ class RigidContact {
       for (auto& e : bodies_) e.force_on_material.setZero();
     }
     for (int b = 0; b < body_count(); ++b) correct_body(view, b, record);
+  }
+
+  // After the grid's boundary conditions: where a condition imposed a component of a contact
+  // node's velocity (a fixed floor under the blade, a roller side), the body applied nothing
+  // in that component (the condition's reaction took it), so the recorded force drops it; the
+  // records and totals are then the forces the material actually received.
+  void conditions_applied(const GridView<Dim>& view) {
+    if (view.phase != Phase::end_velocity || view.imposed.empty()) return;
+    for (auto& e : bodies_) e.force_on_material.setZero();
+    for (auto& r : records_) {
+      const unsigned imposed = view.imposed[static_cast<std::size_t>(r.node)];
+      for (int d = 0; d < Dim; ++d) {
+        if ((imposed >> d) & 1u) r.force_on_material[d] = 0.0;
+      }
+      r.normal_force = r.force_on_material.dot(r.normal);
+      r.shear_force = r.force_on_material.dot(r.tangent);
+      bodies_[static_cast<std::size_t>(r.body)].force_on_material += r.force_on_material;
+    }
   }
 
   void advance(double dt, double time) {
@@ -338,8 +294,8 @@ class RigidContact {
           }
         }
         view.velocity[n] = v_new;
-        if (state != NodeState::separating && e.interface.hold_rotation && view.spin != nullptr) {
-          (*view.spin)[static_cast<std::size_t>(n)] = body_omega;
+        if (state != NodeState::separating && e.interface.hold_rotation && !view.spin.empty()) {
+          view.spin[static_cast<std::size_t>(n)] = body_omega;
         }
         if (!record) continue;
         ContactNode<Dim> r;
@@ -367,5 +323,7 @@ class RigidContact {
   Vec<Dim> cell_size_ = Vec<Dim>::Ones();
   Vec<Dim> origin_ = Vec<Dim>::Zero();
 };
+
+static_assert(ContactLaw<RigidContact<2>, 2>);
 
 }  // namespace cosmpm::contact

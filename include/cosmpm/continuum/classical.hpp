@@ -1,93 +1,107 @@
 #pragma once
-// The classical (nonpolar) continuum: which fields a particle carries and how its stress is
-// updated from the velocity gradient of a step.
+// The classical (nonpolar) continuum in 2D plane strain: which fields a particle carries, how
+// its stress is updated from the velocity gradient of a step, and how it loads the grid. It
+// has no degrees of freedom besides the translations, so every rotational term of the
+// continuum contract (continuum/concept.hpp) is empty. AntiLocking (continuum/
+// antilocking.hpp) chooses how the volumetric strain rate is formed:
+//   continuum::Classical<material::MohrCoulomb<>, antilocking::FBar>
 #include <array>
-#include <tuple>
+#include <limits>
+#include <span>
 
+#include "cosmpm/continuum/antilocking.hpp"
+#include "cosmpm/continuum/objective_update.hpp"
 #include "cosmpm/continuum/particle_fields.hpp"
 #include "cosmpm/continuum/rates.hpp"
+#include "cosmpm/core/compiler.hpp"
 #include "cosmpm/core/types.hpp"
+#include "cosmpm/grid/grid.hpp"
 #include "cosmpm/material/concept.hpp"
-#include "cosmpm/particles/fields.hpp"
-#include "cosmpm/particles/store.hpp"
 
 namespace cosmpm::continuum {
 
-template <material::ConstitutiveModel Model>
-requires(!Model::is_cosserat) struct Classical {
+template <material::ConstitutiveModel Model, class AntiLocking = antilocking::None>
+requires(!Model::is_cosserat && material::dimension_of<Model> == 2) class Classical {
+ public:
   using model_type = Model;
+  using antilocking_type = AntiLocking;
+  using stress_type = typename Model::stress_type;
+  using strain_type = typename Model::strain_type;
+  using state_type = typename Model::state_type;
   static constexpr bool is_cosserat = false;
+  static constexpr int dim = 2;
+  static constexpr int rotational_dofs = 0;
+  static constexpr const char* name() { return "classical"; }
 
   template <int Dim>
   using particle_store = particle_store_with<Dim, Model>;
-
   template <int Dim>
-  using rates_type = ParticleRates<Dim, false>;
+  using rates_type = ParticleRates<Dim, rotational_dofs>;
 
-  // Objective (Jaumann) stress update for a 2D plane-strain step with velocity gradient L:
-  // rotate the old stress by the spin, then let the model integrate the strain increment.
-  // Component by component: the engine runs this per particle inside its paired loop, where
-  // (measured) whole-vector temporaries cost more than scalar updates in place.
+  // A model is all a classical continuum needs, so a model converts to one (Simulation's
+  // constructor takes either).
+  Classical(const Model& model) : model_(model) {}  // NOLINT(google-explicit-constructor)
+  const Model& model() const { return model_; }
+
+  // --- the stress update: one formula for one particle, for packs and for batches ---------
+
+  // Objective (Jaumann) update for a step with velocity gradient L: rotate the old stress by
+  // the spin, then let the model integrate the strain increment.
   static void update_stress(const Model& model, const rates_type<2>& rates, double dt,
-                            typename Model::stress_type& stress, typename Model::state_type& state,
-                            typename Model::strain_type& accumulated_strain) {
-    const typename Model::strain_type increment = rotate_and_increment(rates, dt, stress);
-    model.update(stress, state, increment);
-    accumulate_strain(accumulated_strain, increment);
+                            stress_type& stress, state_type& state, strain_type& strain) {
+    objective_update<Classical>(model, rates, dt, stress, state, strain);
   }
 
   // update_stress in parts, for callers that hand the model many points in one call
-  // (material::update_batch): the rotation of the stress by the spin, returning the strain
-  // increment the model then integrates, and the strain's accumulation.
-  static typename Model::strain_type rotate_and_increment(const rates_type<2>& rates, double dt,
-                                                          typename Model::stress_type& stress) {
-    const Mat<2>& velocity_gradient = rates.velocity_gradient;
-    rotate_by_spin(0.5 * (velocity_gradient(0, 1) - velocity_gradient(1, 0)) * dt, stress);
-    typename Model::strain_type increment;
-    increment[0] = velocity_gradient(0, 0) * dt;
-    increment[1] = velocity_gradient(1, 1) * dt;
-    increment[2] = 0.0;
-    increment[3] = 0.5 * (velocity_gradient(0, 1) + velocity_gradient(1, 0)) * dt;
+  // (material::update_batch): the rotation, returning the increment, and the accumulation.
+  static strain_type rotate_and_increment(const rates_type<2>& rates, double dt,
+                                          stress_type& stress) {
+    const auto values = rotate_and_increment_values(rates.velocity_gradient, dt, stress);
+    strain_type increment;
+    for (int c = 0; c < 4; ++c) increment[c] = values[c];
     return increment;
   }
-  static void accumulate_strain(typename Model::strain_type& accumulated_strain,
-                                const typename Model::strain_type& increment) {
-    // Plane strain: the zz increment is zero, so the zz strain stays as it is.
-    accumulated_strain[0] += increment[0];
-    accumulated_strain[1] += increment[1];
-    accumulated_strain[3] += increment[3];
-  }
 
-  // Whether the model updates several points at once on packs of their components
-  // (update_values, for models without state such as LinearElastic): the engine's
-  // grid-to-particle loop then runs the whole stress update side by side for W particles.
-  template <class Value>
-  static constexpr bool updates_values = requires(const Model& model, std::array<Value, 4>& stress,
-                                                  const std::array<Value, 4>& de) {
-    model.update_values(stress, de);
-  };
-
-  // update_stress for W particles at once: lane l of every value belongs to particle l, L the
-  // velocity gradient, `strain` the accumulated [e_xx, e_yy, e_xy].
-  template <class Value>
-  requires updates_values<Value>
-  static void update_stress_values(const Model& model, const std::array<std::array<Value, 2>, 2>& L,
-                                   double dt, std::array<Value, 4>& stress,
-                                   std::array<Value, 3>& strain) {
-    // The same operations, in the same order, as update_stress: the same results.
-    rotate_by_spin(0.5 * (L[0][1] - L[1][0]) * dt, stress);
-    const std::array<Value, 4> increment{L[0][0] * dt, L[1][1] * dt, Value{},
-                                         0.5 * (L[0][1] + L[1][0]) * dt};
-    model.update_values(stress, increment);
+  // Plane strain: the zz increment is zero, so the zz strain stays as it is. Strain and
+  // increment are indexable by the four stress components.
+  template <class Strain, class Increment>
+  COSMPM_ALWAYS_INLINE static void accumulate_strain(Strain& strain, const Increment& increment) {
     strain[0] += increment[0];
     strain[1] += increment[1];
-    strain[2] += increment[3];
+    strain[3] += increment[3];
   }
 
-  // The Jaumann rotation of the stress by the spin angle of a step, in place (an Eigen vector,
-  // or an array of packs).
+  // Whether the model updates several points at once on packs of their components (the
+  // material concept's packed hook; LinearElastic has it): the engine's grid-to-particle loop
+  // then runs the whole stress update side by side for W particles.
+  template <class Value>
+  static constexpr bool updates_values = material::HasPackedUpdate<Model, Value>;
+
+  // update_stress for W particles at once: lane l of every value belongs to particle l, L the
+  // velocity gradient, `strain` the accumulated strain (component 2, zz, is not touched).
+  template <class Value>
+  requires updates_values<Value> COSMPM_ALWAYS_INLINE static void update_stress_values(
+      const Model& model, const std::array<std::array<Value, 2>, 2>& L, double dt,
+      std::array<Value, 4>& stress, std::array<Value, 4>& strain) {
+    const std::array<Value, 4> increment = rotate_and_increment_values(L, dt, stress);
+    model.update_values(stress, increment);
+    accumulate_strain(strain, increment);
+  }
+
+  // The rotation of the stress by the step's spin (in place) and the strain increment, on an
+  // Eigen matrix L and vector stress or on arrays of packs: the one place both are written.
+  template <class Gradient, class Stress>
+  COSMPM_ALWAYS_INLINE static auto rotate_and_increment_values(const Gradient& L, double dt,
+                                                               Stress& stress) {
+    using Value = std::remove_cvref_t<decltype(entry(L, 0, 0))>;
+    rotate_by_spin(0.5 * (entry(L, 0, 1) - entry(L, 1, 0)) * dt, stress);
+    return std::array<Value, 4>{entry(L, 0, 0) * dt, entry(L, 1, 1) * dt, Value{},
+                                0.5 * (entry(L, 0, 1) + entry(L, 1, 0)) * dt};
+  }
+
+  // The Jaumann rotation of the stress by the spin angle of a step, in place.
   template <class Value, class Stress>
-  static void rotate_by_spin(const Value& spin, Stress& stress) {
+  COSMPM_ALWAYS_INLINE static void rotate_by_spin(const Value& spin, Stress& stress) {
     const Value sxx = stress[0];
     const Value syy = stress[1];
     const Value sxy = stress[3];
@@ -96,13 +110,45 @@ requires(!Model::is_cosserat) struct Classical {
     stress[3] = sxy + spin * (syy - sxx);
   }
 
+  // --- how a particle loads the grid ----------------------------------------------------
+
   // A particle's nodal internal force -V sigma . grad N, written as sum_i dN/dx_i b[j][i] for
   // force component j (the transfers contract it one axis at a time).
-  static std::array<std::array<double, 2>, 2> internal_force_coefficients(
-      const typename Model::stress_type& stress, double volume) {
+  static std::array<std::array<double, 2>, 2> internal_force_coefficients(const stress_type& stress,
+                                                                          double volume) {
     const double sxy = -volume * stress[3];
     return {{{-volume * stress[0], sxy}, {sxy, -volume * stress[1]}}};
   }
+
+  // --- rotational degrees of freedom: none ----------------------------------------------
+  template <class Store>
+  static std::array<double, 0> rotational_inertia(const Store&, Index, double) {
+    return {};
+  }
+  template <class Store>
+  static std::array<double, 0> rotational_velocity(const Store&, Index) {
+    return {};
+  }
+  static void rotational_force_terms(const stress_type&, double, double*, std::array<double, 2>*) {}
+  template <class Store>
+  static void update_rotations(Store&, Index, double, double, const std::array<double, 0>&,
+                               const std::array<double, 0>&) {}
+  template <class Store>
+  void initialise_particles(Store&, Index, Index) const {}
+  void apply_rotation_conditions(const grid::Grid<2>&, std::span<double>) const {}
+  // No bound of its own: the engine's p-wave bound holds.
+  double stable_time_step(const grid::Grid<2>&, double) const {
+    return std::numeric_limits<double>::infinity();
+  }
+
+ private:
+  static double entry(const Mat<2>& L, int i, int j) { return L(i, j); }
+  template <class Value>
+  static const Value& entry(const std::array<std::array<Value, 2>, 2>& L, int i, int j) {
+    return L[i][j];
+  }
+
+  Model model_;
 };
 
 }  // namespace cosmpm::continuum

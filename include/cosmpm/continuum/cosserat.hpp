@@ -8,46 +8,85 @@
 //   rho J d^2 omega_3 / dt^2 = d m_3i / dx_i + s_xy - s_yx.
 // Their weak forms give, per particle of volume V and node shape function N:
 //   f_j = -V s_ij dN/dx_i,   moment = -V m_3i dN/dx_i + V (s_xy - s_yx) N.
+// The rotation is one more nodal degree of freedom (rotational_dofs = 1), with its own
+// inertia sum N m J, momentum, moment and boundary conditions (CosseratSettings).
+//
+//   continuum::Cosserat<material::CosseratDruckerPrager<>> polar(model, {.micro_inertia = J});
+//   polar.set_rotation_fixed(grid::BoundaryConditions<2>::face(1, false));  // rough floor
+//   Simulation<2, shape::Linear, decltype(polar), ...> sim(grid, polar, parameters);
 #include <array>
+#include <cmath>
+#include <span>
 
+#include "cosmpm/continuum/objective_update.hpp"
 #include "cosmpm/continuum/particle_fields.hpp"
 #include "cosmpm/continuum/rates.hpp"
+#include "cosmpm/core/error.hpp"
 #include "cosmpm/core/types.hpp"
+#include "cosmpm/grid/boundary.hpp"
+#include "cosmpm/grid/grid.hpp"
 #include "cosmpm/material/concept.hpp"
 #include "cosmpm/particles/fields.hpp"
-#include "cosmpm/particles/store.hpp"
 
 namespace cosmpm::continuum {
 
+// What a Cosserat continuum needs besides its model.
+struct CosseratSettings {
+  // Micro-inertia J per unit mass of every particle, m^2 (> 0); the paper's corn:
+  // 0.5 (0.5 l)^2 = 12.5e-6 m^2 for l = 10 mm.
+  double micro_inertia = 0.0;
+  // Faces of the grid box (BoundaryConditions<2>::face numbering) whose nodes hold the
+  // micro-rotation rate at zero.
+  std::array<bool, 4> rotation_fixed{};
+};
+
 template <material::ConstitutiveModel Model>
-requires(Model::is_cosserat) struct Cosserat {
+requires(Model::is_cosserat&& material::dimension_of<Model> == 2) class Cosserat {
+ public:
   using model_type = Model;
+  using stress_type = typename Model::stress_type;
+  using strain_type = typename Model::strain_type;
+  using state_type = typename Model::state_type;
   static constexpr bool is_cosserat = true;
+  static constexpr int dim = 2;
+  static constexpr int rotational_dofs = 1;  // omega_3
+  static constexpr const char* name() { return "cosserat"; }
 
   template <int Dim>
   using particle_store =
       particle_store_with<Dim, Model, particles::field::MicroRotation, particles::field::MicroSpin,
                           particles::field::MicroInertia>;
-
   template <int Dim>
-  using rates_type = ParticleRates<Dim, true>;
+  using rates_type = ParticleRates<Dim, rotational_dofs>;
+
+  Cosserat(const Model& model, const CosseratSettings& settings)
+      : model_(model), settings_(settings) {
+    require_positive("continuum::Cosserat", "micro_inertia (m^2, per unit mass)",
+                     settings.micro_inertia);
+  }
+  const Model& model() const { return model_; }
+  const CosseratSettings& settings() const { return settings_; }
+
+  // Holds the micro-rotation rate at zero on a face of the grid box (or frees it again).
+  Cosserat& set_rotation_fixed(int face, bool fixed = true) {
+    require_in_range("continuum::Cosserat::set_rotation_fixed", "face", face, 0, 3, Bounds::closed);
+    settings_.rotation_fixed[static_cast<std::size_t>(face)] = fixed;
+    return *this;
+  }
+  bool rotation_fixed(int face) const { return settings_.rotation_fixed.at(face); }
+
+  // --- the stress update ----------------------------------------------------------------
+
+  static void update_stress(const Model& model, const rates_type<2>& rates, double dt,
+                            stress_type& stress, state_type& state, strain_type& strain) {
+    objective_update<Cosserat>(model, rates, dt, stress, state, strain);
+  }
 
   // The in-plane stress is rotated with the continuum spin (Jaumann, valid for a
   // non-symmetric tensor: S += dt (W S - S W)) and the couple-stress vector with it
-  // (m += dt W m); then the model integrates the Cosserat deformation increment.
-  static void update_stress(const Model& model, const rates_type<2>& rates, double dt,
-                            typename Model::stress_type& stress, typename Model::state_type& state,
-                            typename Model::strain_type& accumulated_strain) {
-    const typename Model::strain_type increment = rotate_and_increment(rates, dt, stress);
-    model.update(stress, state, increment);
-    accumulate_strain(accumulated_strain, increment);
-  }
-
-  // update_stress in parts, for callers that hand the model many points in one call
-  // (material::update_batch): the rotation, returning the deformation increment the model
-  // then integrates, and the strain's accumulation.
-  static typename Model::strain_type rotate_and_increment(const rates_type<2>& rates, double dt,
-                                                          typename Model::stress_type& stress) {
+  // (m += dt W m); returns the Cosserat deformation increment the model integrates.
+  static strain_type rotate_and_increment(const rates_type<2>& rates, double dt,
+                                          stress_type& stress) {
     const Mat<2>& L = rates.velocity_gradient;
     const double w = 0.5 * (L(0, 1) - L(1, 0)) * dt;
     const double sxx = stress[0], syy = stress[1], sxy = stress[3], syx = stress[4];
@@ -60,35 +99,95 @@ requires(Model::is_cosserat) struct Cosserat {
     stress[5] = m1 + w * m2;
     stress[6] = m2 - w * m1;
 
-    typename Model::strain_type increment;
+    strain_type increment;
     increment[0] = L(0, 0) * dt;
     increment[1] = L(1, 1) * dt;
     increment[2] = 0.0;
-    increment[3] = (L(1, 0) - rates.spin) * dt;  // du_y/dx - omega_3
-    increment[4] = (L(0, 1) + rates.spin) * dt;  // du_x/dy + omega_3
-    increment[5] = rates.spin_gradient[0] * dt;
-    increment[6] = rates.spin_gradient[1] * dt;
+    increment[3] = (L(1, 0) - rates.spin[0]) * dt;  // du_y/dx - omega_3
+    increment[4] = (L(0, 1) + rates.spin[0]) * dt;  // du_x/dy + omega_3
+    increment[5] = rates.spin_gradient[0][0] * dt;
+    increment[6] = rates.spin_gradient[0][1] * dt;
     return increment;
   }
-  static void accumulate_strain(typename Model::strain_type& accumulated_strain,
-                                const typename Model::strain_type& increment) {
-    accumulated_strain += increment;
+  static void accumulate_strain(strain_type& strain, const strain_type& increment) {
+    strain += increment;
   }
 
+  // No update on packs: the engine updates Cosserat stresses per particle or in batches.
+  template <class Value>
+  static constexpr bool updates_values = false;
+
+  // --- how a particle loads the grid ----------------------------------------------------
+
   // A particle's nodal force -V s_ij dN/dx_i as sum_i dN/dx_i b[j][i] for component j.
-  static std::array<std::array<double, 2>, 2> internal_force_coefficients(
-      const typename Model::stress_type& stress, double volume) {
+  static std::array<std::array<double, 2>, 2> internal_force_coefficients(const stress_type& stress,
+                                                                          double volume) {
     return {
         {{-volume * stress[0], -volume * stress[4]}, {-volume * stress[3], -volume * stress[1]}}};
   }
 
-  // A particle's nodal moment -V m_3i dN/dx_i + V (s_xy - s_yx) N as N weighted +
-  // sum_i dN/dx_i by_gradient[i].
-  static void moment_coefficients(const typename Model::stress_type& stress, double volume,
-                                  double& weighted, std::array<double, 2>& by_gradient) {
-    weighted = volume * (stress[3] - stress[4]);
-    by_gradient = {-volume * stress[5], -volume * stress[6]};
+  // A particle's nodal moment -V m_3i dN/dx_i + V (s_xy - s_yx) N as N weighted[0] +
+  // sum_i dN/dx_i by_gradient[0][i].
+  static void rotational_force_terms(const stress_type& stress, double volume, double* weighted,
+                                     std::array<double, 2>* by_gradient) {
+    weighted[0] = volume * (stress[3] - stress[4]);
+    by_gradient[0] = {-volume * stress[5], -volume * stress[6]};
   }
+
+  // --- the rotational degree of freedom -------------------------------------------------
+
+  // A particle's rotational inertia m J and spin, which the particle-to-grid map spreads as
+  // N m J and N m J spin.
+  template <class Store>
+  static std::array<double, 1> rotational_inertia(const Store& particles, Index p, double mass) {
+    return {mass * particles.template get<particles::field::MicroInertia>()[p]};
+  }
+  template <class Store>
+  static std::array<double, 1> rotational_velocity(const Store& particles, Index p) {
+    return {particles.template get<particles::field::MicroSpin>()[p]};
+  }
+
+  // Grid to particle: spin (PIC/FLIP blend, as the velocity) and micro-rotation from the
+  // nodal spin and spin acceleration at the particle.
+  template <class Store>
+  static void update_rotations(Store& particles, Index p, double dt, double flip,
+                               const std::array<double, 1>& spin_grid,
+                               const std::array<double, 1>& spin_acceleration) {
+    double& spin = particles.template get<particles::field::MicroSpin>()[p];
+    spin = flip * (spin + dt * spin_acceleration[0]) + (1.0 - flip) * spin_grid[0];
+    particles.template get<particles::field::MicroRotation>()[p] += dt * spin_grid[0];
+  }
+
+  // New particles take the micro-inertia of the settings.
+  template <class Store>
+  void initialise_particles(Store& particles, Index first, Index count) const {
+    auto& inertia = particles.template get<particles::field::MicroInertia>();
+    for (Index p = first; p < first + count; ++p) inertia[p] = settings_.micro_inertia;
+  }
+
+  // Zero nodal spin on the faces whose rotation is fixed.
+  void apply_rotation_conditions(const grid::Grid<2>& grid, std::span<double> spin) const {
+    for (int face = 0; face < 4; ++face) {
+      if (!settings_.rotation_fixed[static_cast<std::size_t>(face)]) continue;
+      grid::for_each_face_node(grid, face / 2, face % 2 == 1, [&](Index n) { spin[n] = 0.0; });
+    }
+  }
+
+  // The bound of the highest rotational frequency,
+  //   omega^2 = (4 Gc + 8 G l^2 sum_d 1 / h_d^2) / (rho J),  dt <= 2 / omega,
+  // the local (s_xy - s_yx) stiffness plus the couple-stress "Laplacian" on the grid.
+  double stable_time_step(const grid::Grid<2>& grid, double max_density) const {
+    double inverse_h2 = 0.0;
+    for (int d = 0; d < 2; ++d) inverse_h2 += 1.0 / (grid.cell_size()[d] * grid.cell_size()[d]);
+    const double stiffness =
+        4.0 * model_.cosserat_shear_modulus() + 4.0 * model_.bending_modulus() * inverse_h2;
+    const double omega = std::sqrt(stiffness / (max_density * settings_.micro_inertia));
+    return 2.0 / omega;
+  }
+
+ private:
+  Model model_;
+  CosseratSettings settings_;
 };
 
 }  // namespace cosmpm::continuum

@@ -20,9 +20,14 @@
 #define COSMPM_OMP_PARALLEL_FOR_MIN(threads, work, chunk, ...)                               \
   COSMPM_PRAGMA(omp parallel for schedule(dynamic, chunk) num_threads(threads) if ((work) >= \
                                                                                cosmpm::parallel_threshold) reduction(min : __VA_ARGS__))
+// The same loop with the reduction clauses given, e.g. reduction(min : a) reduction(max : b).
+#define COSMPM_OMP_PARALLEL_FOR_REDUCE(threads, work, chunk, ...)                            \
+  COSMPM_PRAGMA(omp parallel for schedule(dynamic, chunk) num_threads(threads) if ((work) >= \
+                                                                               cosmpm::parallel_threshold) __VA_ARGS__)
 #else
 #define COSMPM_OMP_PARALLEL_FOR(threads, work, chunk)
 #define COSMPM_OMP_PARALLEL_FOR_MIN(threads, work, chunk, ...)
+#define COSMPM_OMP_PARALLEL_FOR_REDUCE(threads, work, chunk, ...)
 #endif
 
 namespace cosmpm {
@@ -35,6 +40,15 @@ inline int resolve_thread_count(int requested) {
   return requested > 0 ? requested : omp_get_max_threads();
 #else
   (void)requested;
+  return 1;
+#endif
+}
+
+// Threads of the team running the calling code (1 outside a parallel region or without OpenMP).
+inline int current_team_size() {
+#if defined(_OPENMP)
+  return omp_get_num_threads();
+#else
   return 1;
 #endif
 }

@@ -3,9 +3,11 @@
 #include <array>
 #include <cmath>
 #include <string>
+#include <vector>
 
 #include "cosmpm/core/error.hpp"
 #include "cosmpm/core/types.hpp"
+#include "cosmpm/grid/grid.hpp"
 
 namespace cosmpm::grid {
 
@@ -38,50 +40,87 @@ class BoundaryConditions {
   }
   const FaceCondition& operator[](int face_index) const { return faces_[face_index]; }
 
-  // Cosserat continua: whether the micro-rotation rate is held at zero on a face.
-  void set_rotation_fixed(int face_index, bool fixed) {
-    require_in_range("BoundaryConditions::set_rotation_fixed", "face", face_index, 0,
-                     face_count - 1, Bounds::closed);
-    rotation_fixed_[face_index] = fixed;
-  }
-  bool rotation_fixed(int face_index) const { return rotation_fixed_[face_index]; }
-
-  // Imposes the face condition on the updated velocity `v` of a node lying on that face. For
-  // a friction wall the removed normal velocity is the impulse that bounds the tangential one.
-  static void apply(const FaceCondition& condition, int axis, bool upper, Vec<Dim>& v) {
+  // Imposes the face condition on the updated velocity `v` of a node lying on that face and
+  // returns the components it imposed (bit d for component d). For a friction wall the
+  // removed normal velocity is the impulse that bounds the tangential one.
+  static unsigned apply(const FaceCondition& condition, int axis, bool upper, Vec<Dim>& v) {
+    constexpr unsigned all = (1u << Dim) - 1u;
+    const unsigned normal = 1u << axis;
     switch (condition.kind) {
       case BoundaryKind::free:
-        return;
+        return 0u;
       case BoundaryKind::fixed:
         v.setZero();
-        return;
+        return all;
       case BoundaryKind::roller:
         v[axis] = 0.0;
-        return;
+        return normal;
       case BoundaryKind::friction: {
         // Outward normal: -e_axis at the lower face, +e_axis at the upper one.
         const double outward = upper ? v[axis] : -v[axis];
-        if (outward <= 0.0) return;  // separating: free
+        if (outward <= 0.0) return 0u;  // separating: free
         v[axis] = 0.0;
         double tangential_norm = 0.0;
         for (int d = 0; d < Dim; ++d) {
           if (d != axis) tangential_norm += v[d] * v[d];
         }
         tangential_norm = std::sqrt(tangential_norm);
-        if (tangential_norm == 0.0) return;
+        if (tangential_norm == 0.0) return normal;
         const double allowed = condition.friction_coefficient * outward;
         const double scale = tangential_norm > allowed ? 1.0 - allowed / tangential_norm : 0.0;
         for (int d = 0; d < Dim; ++d) {
           if (d != axis) v[d] *= scale;
         }
-        return;
+        return all;
       }
     }
+    return 0u;
   }
 
  private:
   std::array<FaceCondition, face_count> faces_{};
-  std::array<bool, face_count> rotation_fixed_{};
 };
+
+// f(n) for every node n on the lower (upper = false) or upper face normal to `axis`.
+template <int Dim, class F>
+void for_each_face_node(const Grid<Dim>& grid, int axis, bool upper, F&& f) {
+  std::array<Index, Dim> ijk{};
+  ijk[axis] = upper ? grid.nodes(axis) - 1 : 0;
+  Index total = 1;
+  for (int d = 0; d < Dim; ++d) {
+    if (d != axis) total *= grid.nodes(d);
+  }
+  for (Index k = 0; k < total; ++k) {
+    Index rest = k;
+    for (int d = 0; d < Dim; ++d) {
+      if (d == axis) continue;
+      ijk[d] = rest % grid.nodes(d);
+      rest /= grid.nodes(d);
+    }
+    f(grid.node_index(ijk));
+  }
+}
+
+// The face conditions on a nodal velocity field, face by face in face order, so a node on
+// several faces (a corner) takes them in the order of the faces. With `imposed` (one entry per
+// node, zeroed by the caller), each node's entry collects the components the conditions
+// imposed (BoundaryConditions::apply).
+template <int Dim>
+void apply_boundary_conditions(const BoundaryConditions<Dim>& conditions, const Grid<Dim>& grid,
+                               std::vector<Vec<Dim>>& velocity,
+                               std::vector<unsigned char>* imposed = nullptr) {
+  for (int face = 0; face < 2 * Dim; ++face) {
+    const auto& condition = conditions[face];
+    if (condition.kind == BoundaryKind::free) continue;
+    const int axis = face / 2;
+    const bool upper = face % 2 == 1;
+    for_each_face_node(grid, axis, upper, [&](Index n) {
+      const auto node = static_cast<std::size_t>(n);
+      const unsigned components =
+          BoundaryConditions<Dim>::apply(condition, axis, upper, velocity[node]);
+      if (imposed != nullptr) (*imposed)[node] |= static_cast<unsigned char>(components);
+    });
+  }
+}
 
 }  // namespace cosmpm::grid

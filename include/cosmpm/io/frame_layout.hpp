@@ -22,6 +22,7 @@
 #include "cosmpm/core/error.hpp"
 #include "cosmpm/core/types.hpp"
 #include "cosmpm/io/field_layout.hpp"
+#include "cosmpm/material/stress_space.hpp"
 #include "cosmpm/particles/fields.hpp"
 
 namespace cosmpm::io {
@@ -119,11 +120,20 @@ void add_eigen_field(ArrayList& list, const std::vector<typename Tag::value_type
     for (std::size_t p = 0; p < n; ++p) {
       const V& s = column[p];
       double* t = tensor.values.data() + 9 * p;
-      t[t9(0, 0)] = s[0];
-      t[t9(1, 1)] = s[1];
-      t[t9(2, 2)] = s[2];
-      t[t9(0, 1)] = s[3];
-      t[t9(1, 0)] = rows == 7 ? s[4] : s[3];
+      if constexpr (rows == 4) {
+        // The classical order is the library's own (material/stress_space.hpp).
+        const Eigen::Matrix3d full = material::to_tensor<2, double>(s);
+        for (int i = 0; i < 3; ++i) {
+          for (int j = 0; j < 3; ++j) t[t9(i, j)] = full(i, j);
+        }
+      } else {
+        // Cosserat [xx, yy, zz, xy, yx, ...]: not symmetric.
+        t[t9(0, 0)] = s[0];
+        t[t9(1, 1)] = s[1];
+        t[t9(2, 2)] = s[2];
+        t[t9(0, 1)] = s[3];
+        t[t9(1, 0)] = s[4];
+      }
     }
     if constexpr (Info::layout == TensorLayout::cosserat2d) {
       auto& couple = list.add(Info::couple_label, ArrayShape::vector, Info::couple_units(),

@@ -22,6 +22,30 @@ concept OutputState = requires(const S& state) {
   { state.values() } -> std::convertible_to<std::array<double, S::labels.size()>>;
 };
 
+// State of a model without internal variables.
+struct NoState {
+  static constexpr std::array<std::string_view, 0> labels{};
+  std::array<double, 0> values() const { return {}; }
+};
+
+// State of the perfectly plastic models: the paper's yield-point maps use `plastic`.
+struct PlasticState {
+  double plastic_shear_strain = 0.0;  // accumulated equivalent plastic shear strain
+  double plastic = 0.0;               // 1 if the last update returned to the yield surface
+  static constexpr std::array<std::string_view, 2> labels{"plastic_shear_strain", "plastic"};
+  std::array<double, 2> values() const { return {plastic_shear_strain, plastic}; }
+};
+
+// A model of a material point. Contract, checked for every model by the conformance kit
+// (tests/material/conformance.hpp):
+//   - update(stress, state, de): `stress` holds the stress at the start of the increment and
+//     receives the new one, `de` is the strain increment of the step (tension positive, tensor
+//     shear), `state` the model's internal variables, updated in place;
+//   - an increment whose elastic trial stress lies inside the yield surface returns that trial
+//     exactly (the elastic law of the model's elastic part, bit for bit) and a state marked
+//     elastic;
+//   - isotropy: rotating the old stress and the increment rotates the new stress;
+//   - a plastic step ends on the yield surface (|f| within rounding of the stress scale).
 template <class M>
 concept ConstitutiveModel = requires(const M& model, typename M::stress_type& stress,
                                      typename M::state_type& state,
@@ -40,7 +64,10 @@ concept ConstitutiveModel = requires(const M& model, typename M::stress_type& st
 &&std::is_trivially_copyable_v<typename M::state_type>&& OutputState<typename M::state_type>;
 
 // A model that also gives the algorithmic (consistent) tangent d(stress)/d(strain increment),
-// for implicit solvers. Layout: tangent(i, j) = d stress[i] / d strain_increment[j].
+// for implicit solvers. Layout: tangent(i, j) = d stress[i] / d strain_increment[j]. Contract:
+// the stress and state are those of update() without the tangent, bit for bit (one path), and
+// the tangent agrees with finite differences of update() away from the boundaries of the
+// return regions.
 template <class M>
 concept HasConsistentTangent = ConstitutiveModel<M> &&
     requires(const M& model, typename M::stress_type& stress, typename M::state_type& state,
@@ -49,9 +76,33 @@ concept HasConsistentTangent = ConstitutiveModel<M> &&
   { model.update(stress, state, strain_increment, tangent) } -> std::same_as<void>;
 };
 
-// A model that also updates whole arrays of points in one call (faster than a loop over
-// update() when it has a batched return, e.g. CosseratDruckerPrager). Same results as
-// update() point by point, to rounding.
+// The packed hook: a model that updates several points at once on packs of their components
+// (core/pack.hpp), e.g. LinearElastic, which the engine's grid-to-particle loop then runs side
+// by side for W particles. Contract:
+//   model.update_values(stress, de), stress and de std::array<Value, n> (n the components of
+//   stress_type), lane l of every value belonging to point l, does to every lane what
+//   update(stress, state, de) does to that point, bit for bit: the same operations in the same
+//   order (both are written once, as one template on the value type). Value is T or a pack of
+//   T. A packed update carries no state, so only models without one (NoState) qualify.
+template <class M, class Value>
+concept HasPackedUpdate = ConstitutiveModel<M> && std::same_as<typename M::state_type, NoState> &&
+    requires(const M& model,
+             std::array<Value, static_cast<std::size_t>(M::stress_type::RowsAtCompileTime)>& stress,
+             const std::array<Value, static_cast<std::size_t>(M::stress_type::RowsAtCompileTime)>&
+                 increment) {
+  { model.update_values(stress, increment) } -> std::same_as<void>;
+};
+
+// The batched hook: a model that updates whole arrays of points in one call, faster than a loop
+// over update() when it has a batched return (CosseratDruckerPrager: its plastic points in SIMD
+// lanes). Contract:
+//   model.update_batch(stress, state, increment) over spans of one size that do not overlap
+//   equals update(stress[i], state[i], increment[i]) for every i: bit for bit, unless the
+//   model declares `static constexpr double batch_rounding` > 0, the largest relative
+//   difference it allows itself where the batch reorders floating-point operations (the norm of
+//   the stress difference over the stress norm, and likewise the plastic strain). Spans of
+//   different sizes throw cosmpm::Error before anything is written; no allocation.
+// material::update_batch(model, ...) below is the one call for any model.
 template <class M>
 concept HasBatchUpdate = ConstitutiveModel<M> &&
     requires(const M& model, std::span<typename M::stress_type> stress,
@@ -59,6 +110,28 @@ concept HasBatchUpdate = ConstitutiveModel<M> &&
              std::span<const typename M::strain_type> increment) {
   { model.update_batch(stress, state, increment) } -> std::same_as<void>;
 };
+
+// The relative difference of a model's update_batch from update() (see HasBatchUpdate): 0 for
+// every model that does not declare one.
+template <class M>
+inline constexpr double batch_rounding = [] {
+  if constexpr (requires { M::batch_rounding; }) {
+    return static_cast<double>(M::batch_rounding);
+  } else {
+    return 0.0;
+  }
+}();
+
+// The dimension of a model's stress space: M::dimension, 2 (plane strain) for models that do
+// not say.
+template <class M>
+inline constexpr int dimension_of = [] {
+  if constexpr (requires { M::dimension; }) {
+    return static_cast<int>(M::dimension);
+  } else {
+    return 2;
+  }
+}();
 
 // The check of a batch update's arguments: one size for the stress, state and increment spans.
 inline void require_equal_batch_sizes(std::string_view where, std::size_t stress, std::size_t state,
@@ -84,19 +157,5 @@ void update_batch(const M& model, std::span<typename M::stress_type> stress,
     for (std::size_t i = 0; i < stress.size(); ++i) model.update(stress[i], state[i], increment[i]);
   }
 }
-
-// State of a model without internal variables.
-struct NoState {
-  static constexpr std::array<std::string_view, 0> labels{};
-  std::array<double, 0> values() const { return {}; }
-};
-
-// State of the perfectly plastic models: the paper's yield-point maps use `plastic`.
-struct PlasticState {
-  double plastic_shear_strain = 0.0;  // accumulated equivalent plastic shear strain
-  double plastic = 0.0;               // 1 if the last update returned to the yield surface
-  static constexpr std::array<std::string_view, 2> labels{"plastic_shear_strain", "plastic"};
-  std::array<double, 2> values() const { return {plastic_shear_strain, plastic}; }
-};
 
 }  // namespace cosmpm::material

@@ -1,112 +1,76 @@
 #pragma once
-// Perfectly plastic Drucker-Prager with non-associated flow and an apex return, plane strain
-// with sigma_zz carried. Tension positive, p = tr(sigma) / 3, q = sqrt(J2) = sqrt(s:s / 2):
-//   f = q + alpha p - k,   g = q + beta p.
-// alpha, beta and k follow from the Mohr-Coulomb phi, psi and c by one of the matchings below
-// (docs/theory/materials.md derives them). k = alpha c cot(phi) for every matching, so the apex
-// p = k / alpha = c cot(phi) coincides with the Mohr-Coulomb apex.
+// Perfectly plastic Drucker-Prager with non-associated flow and an apex return, in plane strain
+// with sigma_zz carried (Dim = 2) or in 3D (Dim = 3); component order in stress_space.hpp.
+// Tension positive, p = tr(sigma) / 3, q = sqrt(J2) = sqrt(s:s / 2):
+//   f = q + alpha p - k,   g = q + beta p,
+// alpha, beta and k from the Mohr-Coulomb phi, psi and c by a DruckerPragerMatching
+// (drucker_prager_matching.hpp).
 #include <Eigen/Core>
 #include <cmath>
-#include <string_view>
 
-#include "cosmpm/core/error.hpp"
 #include "cosmpm/core/types.hpp"
 #include "cosmpm/material/concept.hpp"
-#include "cosmpm/material/detail/elastic_parameters.hpp"
+#include "cosmpm/material/detail/isotropic_elasticity.hpp"
+#include "cosmpm/material/detail/parameter_checks.hpp"
+#include "cosmpm/material/drucker_prager_matching.hpp"
+#include "cosmpm/material/stress_space.hpp"
 
 namespace cosmpm::material {
 
-enum class DruckerPragerMatching {
-  // The plane-strain limit state of Mohr-Coulomb, exactly, for the given psi (plastic flow with
-  // d eps_zz = 0): alpha = sqrt3 sin(phi) sqrt(3 + sin^2 psi) / (3 + sin phi sin psi),
-  // beta = sqrt3 sin(psi) / sqrt(3 + sin^2 psi). Reduces to the classical associated formula when
-  // psi = phi. The default.
-  plane_strain,
-  // The associated plane-strain formula applied to each angle on its own:
-  // alpha = sqrt3 sin(phi) / sqrt(3 + sin^2 phi) (= 3 tan phi / sqrt(9 + 12 tan^2 phi)), beta the
-  // same with psi. The Cosserat default; our choice: the paper says only that the polar
-  // parameters follow Tejchman (1997) and gives no formula (docs/theory/materials.md).
-  plane_strain_per_angle,
-  // Cone through the triaxial-compression corners (circumscribes Mohr-Coulomb):
-  // alpha = 2 sqrt3 sin(phi) / (3 - sin phi), beta likewise with psi.
-  outer,
-  // Cone through the triaxial-extension corners: alpha = 2 sqrt3 sin(phi) / (3 + sin phi).
-  inner,
+// Parameters by name, e.g. DruckerPrager({.youngs_modulus = 2.76e6, .poisson_ratio = 0.2,
+// .friction_angle_deg = 26, .dilatancy_angle_deg = 2}).
+struct DruckerPragerParameters {
+  double youngs_modulus = detail::unset;       // E (Pa), > 0
+  double poisson_ratio = detail::unset;        // nu, -1 < nu < 0.5
+  double friction_angle_deg = detail::unset;   // phi, 0 < phi < 90
+  double dilatancy_angle_deg = detail::unset;  // psi, 0 <= psi <= phi
+  double cohesion = 0.0;                       // c (Pa), >= 0
+  DruckerPragerMatching matching = DruckerPragerMatching::plane_strain;
 };
 
-// Drucker-Prager coefficients of f = q + alpha p - k and g = q + beta p (q = sqrt(J2)).
-template <class T>
-struct DruckerPragerCoefficients {
-  T alpha{};
-  T beta{};
-  T k{};
-};
-
-// Angles in degrees (validated: 0 < phi < 90, 0 <= psi <= phi), cohesion in Pa (>= 0).
-template <class T>
-DruckerPragerCoefficients<T> drucker_prager_coefficients(
-    T friction_angle_deg, T dilatancy_angle_deg, T cohesion,
-    DruckerPragerMatching matching = DruckerPragerMatching::plane_strain,
-    std::string_view where = "drucker_prager_coefficients") {
-  detail::check_friction_angles(where, static_cast<double>(friction_angle_deg),
-                                static_cast<double>(dilatancy_angle_deg));
-  require_non_negative(where, "cohesion", static_cast<double>(cohesion));
-  const T sp = std::sin(T(degrees_to_radians(static_cast<double>(friction_angle_deg))));
-  const T sd = std::sin(T(degrees_to_radians(static_cast<double>(dilatancy_angle_deg))));
-  const T sqrt3 = std::sqrt(T(3));
-  DruckerPragerCoefficients<T> out;
-  switch (matching) {
-    case DruckerPragerMatching::plane_strain:
-      out.alpha = sqrt3 * sp * std::sqrt(3 + sd * sd) / (3 + sp * sd);
-      out.beta = sqrt3 * sd / std::sqrt(3 + sd * sd);
-      break;
-    case DruckerPragerMatching::plane_strain_per_angle:
-      out.alpha = sqrt3 * sp / std::sqrt(3 + sp * sp);
-      out.beta = sqrt3 * sd / std::sqrt(3 + sd * sd);
-      break;
-    case DruckerPragerMatching::outer:
-      out.alpha = 2 * sqrt3 * sp / (3 - sp);
-      out.beta = 2 * sqrt3 * sd / (3 - sd);
-      break;
-    case DruckerPragerMatching::inner:
-      out.alpha = 2 * sqrt3 * sp / (3 + sp);
-      out.beta = 2 * sqrt3 * sd / (3 + sd);
-      break;
-  }
-  out.k = out.alpha * cohesion * std::sqrt(1 - sp * sp) / sp;
-  return out;
-}
-
-template <class T = double>
+template <class T = double, int Dim = 2>
 class DruckerPrager {
+  static constexpr int n = symmetric_components<Dim>;
+
  public:
   using scalar_type = T;
-  using stress_type = SymTensor2D<T>;  // [xx, yy, zz, xy], tension positive
-  using strain_type = SymTensor2D<T>;  // [dxx, dyy, dzz, dxy], tensor shear
+  using stress_type = SymmetricTensor<Dim, T>;  // [xx, yy, zz, xy(, xz, yz)], tension positive
+  using strain_type = SymmetricTensor<Dim, T>;  // tensor shear
   using state_type = PlasticState;
-  using tangent_type = Eigen::Matrix<T, 4, 4>;
+  using tangent_type = Eigen::Matrix<T, n, n>;
+  using parameters_type = DruckerPragerParameters;
   static constexpr bool is_cosserat = false;
+  static constexpr int dimension = Dim;
 
+  explicit DruckerPrager(const DruckerPragerParameters& parameters)
+      : parameters_(checked(parameters)),
+        elastic_(detail::isotropic_elasticity<T>("DruckerPrager", T(parameters.youngs_modulus),
+                                                 T(parameters.poisson_ratio))),
+        coefficients_(drucker_prager_coefficients<T>(
+            T(parameters.friction_angle_deg), T(parameters.dilatancy_angle_deg),
+            T(parameters.cohesion), parameters.matching, "DruckerPrager")) {}
   DruckerPrager(T youngs_modulus, T poisson_ratio, T friction_angle_deg, T dilatancy_angle_deg,
                 T cohesion = T(0),
                 DruckerPragerMatching matching = DruckerPragerMatching::plane_strain)
-      : elastic_(detail::isotropic_elasticity<T>("DruckerPrager", youngs_modulus, poisson_ratio)),
-        coefficients_(drucker_prager_coefficients<T>(friction_angle_deg, dilatancy_angle_deg,
-                                                     cohesion, matching, "DruckerPrager")),
-        matching_(matching) {}
+      : DruckerPrager(DruckerPragerParameters{
+            static_cast<double>(youngs_modulus), static_cast<double>(poisson_ratio),
+            static_cast<double>(friction_angle_deg), static_cast<double>(dilatancy_angle_deg),
+            static_cast<double>(cohesion), matching}) {}
 
+  const DruckerPragerParameters& parameters() const { return parameters_; }
   T shear_modulus() const { return elastic_.shear; }
   T lame_lambda() const { return elastic_.lambda; }
   T bulk_modulus() const { return elastic_.bulk(); }
   T p_wave_modulus() const { return elastic_.p_wave(); }
   const DruckerPragerCoefficients<T>& coefficients() const { return coefficients_; }
-  DruckerPragerMatching matching() const { return matching_; }
+  DruckerPragerMatching matching() const { return parameters_.matching; }
   T apex_pressure() const { return coefficients_.k / coefficients_.alpha; }
 
   // f = q + alpha p - k in Pa; <= 0 inside.
   T yield_function(const stress_type& stress) const {
     const T p = (stress[0] + stress[1] + stress[2]) / 3;
-    const Eigen::Matrix<T, 4, 1> s(stress[0] - p, stress[1] - p, stress[2] - p, stress[3]);
+    Vec s = stress;
+    for (int i = 0; i < 3; ++i) s[i] = stress[i] - p;
     return invariant_q(s) + coefficients_.alpha * p - coefficients_.k;
   }
 
@@ -118,36 +82,40 @@ class DruckerPrager {
     update_impl<true>(stress, state, de, &tangent);
   }
 
-  tangent_type elastic_tangent() const {
-    tangent_type d = tangent_type::Zero();
-    d.template topLeftCorner<3, 3>().setConstant(elastic_.lambda);
-    for (int i = 0; i < 3; ++i) d(i, i) += 2 * elastic_.shear;
-    d(3, 3) = 2 * elastic_.shear;
-    return d;
-  }
+  tangent_type elastic_tangent() const { return elastic_.template tangent<n>(); }
 
  private:
-  using Vec4 = Eigen::Matrix<T, 4, 1>;
-  // q = sqrt(J2) of a deviator stored [xx, yy, zz, xy]: the shear counts twice in s:s.
-  static T invariant_q(const Vec4& s) {
-    return std::sqrt((s[0] * s[0] + s[1] * s[1] + s[2] * s[2]) / 2 + s[3] * s[3]);
+  using Vec = Eigen::Matrix<T, n, 1>;
+  // q = sqrt(J2) of a deviator stored [xx, yy, zz, shears]: each shear counts twice in s:s.
+  static T invariant_q(const Vec& s) {
+    T q2 = (s[0] * s[0] + s[1] * s[1] + s[2] * s[2]) / 2;
+    for (int c = 3; c < n; ++c) q2 += s[c] * s[c];
+    return std::sqrt(q2);
   }
 
+  static const DruckerPragerParameters& checked(const DruckerPragerParameters& p) {
+    detail::require_set("DruckerPrager", "DruckerPragerParameters",
+                        {{"youngs_modulus", p.youngs_modulus},
+                         {"poisson_ratio", p.poisson_ratio},
+                         {"friction_angle_deg", p.friction_angle_deg},
+                         {"dilatancy_angle_deg", p.dilatancy_angle_deg}});
+    return p;
+  }
+
+  // The one stress update (with or without the tangent).
   template <bool WithTangent>
   void update_impl(stress_type& stress, state_type& state, const strain_type& de,
                    tangent_type* tangent) const {
     const T shear = elastic_.shear;
     const T bulk = elastic_.bulk();
-    const T volumetric = elastic_.lambda * (de[0] + de[1] + de[2]);
-    stress[0] += volumetric + 2 * shear * de[0];
-    stress[1] += volumetric + 2 * shear * de[1];
-    stress[2] += volumetric + 2 * shear * de[2];
-    stress[3] += 2 * shear * de[3];
-    const T p_trial = (stress[0] + stress[1] + stress[2]) / 3;
-    const Vec4 s_trial(stress[0] - p_trial, stress[1] - p_trial, stress[2] - p_trial, stress[3]);
+    const auto t = elastic_.template trial<n>(stress, de);
+    const T p_trial = (t[0] + t[1] + t[2]) / 3;
+    Vec s_trial;
+    for (int c = 0; c < n; ++c) s_trial[c] = c < 3 ? t[c] - p_trial : t[c];
     const T q_trial = invariant_q(s_trial);
     const T f_trial = q_trial + coefficients_.alpha * p_trial - coefficients_.k;
     if (f_trial <= T(0)) {
+      for (int c = 0; c < n; ++c) stress[c] = t[c];
       state.plastic = 0.0;
       if constexpr (WithTangent) *tangent = elastic_tangent();
       return;
@@ -160,39 +128,41 @@ class DruckerPrager {
       const T scale = 1 - shear * multiplier / q_trial;
       const T p = p_trial - bulk * coefficients_.beta * multiplier;
       for (int i = 0; i < 3; ++i) stress[i] = scale * s_trial[i] + p;
-      stress[3] = scale * s_trial[3];
+      for (int c = 3; c < n; ++c) stress[c] = scale * s_trial[c];
       // Equivalent plastic shear strain sqrt(2 e:e) of d eps_p = multiplier (s / 2q + ...).
       state.plastic_shear_strain += static_cast<double>(multiplier);
       if constexpr (WithTangent) {
-        const Vec4 n = s_trial / q_trial;  // unit in the sense q(n) = 1
-        const Vec4 n_contract(n[0], n[1], n[2], 2 * n[3]);
-        const Vec4 ones(1, 1, 1, 0);
-        const Vec4 d_multiplier =
-            (shear * n_contract + coefficients_.alpha * bulk * ones) / hardness;
+        const Vec normal = s_trial / q_trial;  // unit in the sense q(normal) = 1
+        Vec contract = normal;                 // normal . de counts each tensor shear twice
+        for (int c = 3; c < n; ++c) contract[c] = 2 * normal[c];
+        Vec ones = Vec::Zero();
+        ones.template head<3>().setOnes();
+        const Vec d_multiplier = (shear * contract + coefficients_.alpha * bulk * ones) / hardness;
         tangent_type deviatoric = tangent_type::Zero();
         for (int i = 0; i < 3; ++i)
           for (int j = 0; j < 3; ++j) deviatoric(i, j) = (i == j ? T(1) : T(0)) - T(1) / 3;
-        deviatoric(3, 3) = 1;
+        for (int c = 3; c < n; ++c) deviatoric(c, c) = 1;
         *tangent = scale * 2 * shear * deviatoric +
-                   (shear * shear * multiplier / q_trial) * n * n_contract.transpose() -
-                   shear * n * d_multiplier.transpose() + bulk * ones * ones.transpose() -
+                   (shear * shear * multiplier / q_trial) * normal * contract.transpose() -
+                   shear * normal * d_multiplier.transpose() + bulk * ones * ones.transpose() -
                    bulk * coefficients_.beta * ones * d_multiplier.transpose();
       }
       return;
     }
     // Apex: hydrostatic stress at c cot(phi); the whole trial deviator is plastic.
     const T apex = apex_pressure();
-    stress = Vec4(apex, apex, apex, 0);
+    for (int c = 0; c < n; ++c) stress[c] = c < 3 ? apex : T(0);
     state.plastic_shear_strain += static_cast<double>(q_trial / shear);
     if constexpr (WithTangent) tangent->setZero();
   }
 
+  DruckerPragerParameters parameters_;
   detail::IsotropicElasticity<T> elastic_;
   DruckerPragerCoefficients<T> coefficients_;
-  DruckerPragerMatching matching_;
 };
 
 static_assert(ConstitutiveModel<DruckerPrager<double>>);
 static_assert(HasConsistentTangent<DruckerPrager<double>>);
+static_assert(HasConsistentTangent<DruckerPrager<double, 3>>);
 
 }  // namespace cosmpm::material

@@ -1,73 +1,84 @@
 #pragma once
-// Isotropic linear elasticity in plane strain with sigma_zz carried.
+// Isotropic linear elasticity, in plane strain with sigma_zz carried (Dim = 2) or in 3D
+// (Dim = 3); component order in stress_space.hpp.
 #include <Eigen/Core>
 
-#include "cosmpm/core/error.hpp"
 #include "cosmpm/core/types.hpp"
 #include "cosmpm/material/concept.hpp"
+#include "cosmpm/material/detail/isotropic_elasticity.hpp"
+#include "cosmpm/material/detail/parameter_checks.hpp"
+#include "cosmpm/material/stress_space.hpp"
 
 namespace cosmpm::material {
 
-template <class T = double>
+// Parameters by name: LinearElastic({.youngs_modulus = 2.76e6, .poisson_ratio = 0.2}).
+struct LinearElasticParameters {
+  double youngs_modulus = detail::unset;  // E (Pa), > 0
+  double poisson_ratio = detail::unset;   // nu, -1 < nu < 0.5
+};
+
+template <class T = double, int Dim = 2>
 class LinearElastic {
+  static constexpr int n = symmetric_components<Dim>;
+
  public:
   using scalar_type = T;
-  using stress_type = SymTensor2D<T>;
-  using strain_type = SymTensor2D<T>;  // [dxx, dyy, dzz, dxy], tensor shear
+  using stress_type = SymmetricTensor<Dim, T>;  // [xx, yy, zz, xy(, xz, yz)]
+  using strain_type = SymmetricTensor<Dim, T>;  // tensor shear
   using state_type = NoState;
-  using tangent_type = Eigen::Matrix<T, 4, 4>;
+  using tangent_type = Eigen::Matrix<T, n, n>;
+  using parameters_type = LinearElasticParameters;
   static constexpr bool is_cosserat = false;
+  static constexpr int dimension = Dim;
 
-  LinearElastic(T youngs_modulus, T poisson_ratio) {
-    require_positive("LinearElastic", "youngs_modulus", youngs_modulus);
-    require_in_range("LinearElastic", "poisson_ratio", poisson_ratio, -1.0, 0.5);
-    shear_ = youngs_modulus / (2 * (1 + poisson_ratio));
-    lambda_ = youngs_modulus * poisson_ratio / ((1 + poisson_ratio) * (1 - 2 * poisson_ratio));
-  }
+  explicit LinearElastic(const LinearElasticParameters& parameters)
+      : parameters_(checked(parameters)),
+        elastic_(detail::isotropic_elasticity<T>("LinearElastic", T(parameters.youngs_modulus),
+                                                 T(parameters.poisson_ratio))) {}
+  LinearElastic(T youngs_modulus, T poisson_ratio)
+      : LinearElastic(LinearElasticParameters{static_cast<double>(youngs_modulus),
+                                              static_cast<double>(poisson_ratio)}) {}
 
-  T shear_modulus() const { return shear_; }
-  T lame_lambda() const { return lambda_; }
-  T bulk_modulus() const { return lambda_ + T(2) / 3 * shear_; }
-  T p_wave_modulus() const { return lambda_ + 2 * shear_; }
+  const LinearElasticParameters& parameters() const { return parameters_; }
+  T shear_modulus() const { return elastic_.shear; }
+  T lame_lambda() const { return elastic_.lambda; }
+  T bulk_modulus() const { return elastic_.bulk(); }
+  T p_wave_modulus() const { return elastic_.p_wave(); }
 
   void update(stress_type& stress, state_type& /*state*/, const strain_type& de) const {
     update_values(stress, de);
   }
-
-  // stress += D de, component by component, on an Eigen vector or on an array of packs that
-  // hold one component of several points each (the engine updates W particles at once so).
-  // Component by component also because callers that just wrote single components of the
-  // stress (the engine's Jaumann rotation) would stall reading them back as whole vectors.
-  template <class Stress, class Increment>
-  void update_values(Stress& stress, const Increment& de) const {
-    const auto volumetric = lambda_ * (de[0] + de[1] + de[2]);
-    const T two_shear = 2 * shear_;
-    stress[0] += volumetric + two_shear * de[0];
-    stress[1] += volumetric + two_shear * de[1];
-    stress[2] += volumetric + two_shear * de[2];
-    stress[3] += two_shear * de[3];
-  }
-
   void update(stress_type& stress, state_type& state, const strain_type& de,
               tangent_type& tangent) const {
     update(stress, state, de);
     tangent = elastic_tangent();
   }
 
-  tangent_type elastic_tangent() const {
-    tangent_type d = tangent_type::Zero();
-    d.template topLeftCorner<3, 3>().setConstant(lambda_);
-    for (int i = 0; i < 3; ++i) d(i, i) += 2 * shear_;
-    d(3, 3) = 2 * shear_;
-    return d;
+  // The packed hook (HasPackedUpdate), and update()'s one path: stress += D de on an Eigen
+  // vector or on arrays of packs that hold one component of several points each.
+  template <class Stress, class Increment>
+  void update_values(Stress& stress, const Increment& de) const {
+    const auto trial = elastic_.template trial<n>(stress, de);
+    for (int i = 0; i < n; ++i) stress[i] = trial[i];
   }
 
+  tangent_type elastic_tangent() const { return elastic_.template tangent<n>(); }
+
  private:
-  T shear_{};
-  T lambda_{};
+  static const LinearElasticParameters& checked(const LinearElasticParameters& p) {
+    detail::require_set("LinearElastic", "LinearElasticParameters",
+                        {{"youngs_modulus", p.youngs_modulus}, {"poisson_ratio", p.poisson_ratio}});
+    return p;
+  }
+
+  LinearElasticParameters parameters_;
+  detail::IsotropicElasticity<T> elastic_;
 };
 
 static_assert(ConstitutiveModel<LinearElastic<double>>);
 static_assert(HasConsistentTangent<LinearElastic<double>>);
+static_assert(HasPackedUpdate<LinearElastic<double>, double>);
+static_assert(ConstitutiveModel<LinearElastic<double, 3>>);
+static_assert(HasPackedUpdate<LinearElastic<double, 3>, double>);
 
 }  // namespace cosmpm::material

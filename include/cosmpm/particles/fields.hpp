@@ -27,6 +27,11 @@ struct VelocityGradient {  // L = grad v of the last step
   static constexpr const char* label() { return "velocity_gradient"; }
 };
 template <int Dim>
+struct AffineMoment {  // APIC: B_p = sum_i N_ip v_i (x_i - x_p)^T, m^2/s (transfer/apic.hpp)
+  using value_type = Mat<Dim>;
+  static constexpr const char* label() { return "affine_moment"; }
+};
+template <int Dim>
 struct DeformationGradient {
   using value_type = Mat<Dim>;
   static constexpr const char* label() { return "deformation_gradient"; }

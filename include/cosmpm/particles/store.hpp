@@ -41,6 +41,28 @@ class Store {
     size_ = count;
   }
 
+  // Moves the particles whose `leaving(p)` is true to the end of `to` (another store of the
+  // same fields) and closes the gaps, keeping the order of those that stay; returns how many
+  // moved. `to` may be null: then they are dropped.
+  template <class Predicate>
+  Index extract_if(Predicate&& leaving, Store* to) {
+    std::vector<Index> moving;
+    for (Index p = 0; p < size_; ++p) {
+      if (leaving(p)) moving.push_back(p);
+    }
+    if (moving.empty()) return 0;
+    if (to != nullptr) {
+      const Index first = to->append(static_cast<Index>(moving.size()));
+      [&]<std::size_t... I>(std::index_sequence<I...>) {
+        (copy_rows(std::get<I>(columns_), moving, std::get<I>(to->columns_), first), ...);
+      }
+      (std::index_sequence_for<Tags...>{});
+    }
+    std::apply([&](auto&... column) { (close_gaps(column, moving), ...); }, columns_);
+    size_ -= static_cast<Index>(moving.size());
+    return static_cast<Index>(moving.size());
+  }
+
   void reserve(Index count) {
     std::apply([count](auto&... column) { (column.reserve(count), ...); }, columns_);
   }
@@ -74,6 +96,29 @@ class Store {
     return found;
   }
 
+  template <class T>
+  static void copy_rows(const std::vector<T>& from, const std::vector<Index>& rows,
+                        std::vector<T>& to, Index first) {
+    for (std::size_t k = 0; k < rows.size(); ++k) {
+      to[static_cast<std::size_t>(first) + k] = from[static_cast<std::size_t>(rows[k])];
+    }
+  }
+
+  // Removes `rows` (ascending) from the column, shifting the others down in order.
+  template <class T>
+  static void close_gaps(std::vector<T>& column, const std::vector<Index>& rows) {
+    std::size_t write = static_cast<std::size_t>(rows.front());
+    std::size_t next_row = 0;
+    for (std::size_t read = write; read < column.size(); ++read) {
+      if (next_row < rows.size() && read == static_cast<std::size_t>(rows[next_row])) {
+        ++next_row;
+        continue;
+      }
+      column[write++] = column[read];
+    }
+    column.resize(write);
+  }
+
   // New entries are zero: vector::resize value-initialises, which for Eigen's fixed-size types
   // runs a default constructor that leaves the coefficients uninitialised.
   template <class T>
@@ -89,5 +134,15 @@ class Store {
   std::tuple<std::vector<typename Tags::value_type>...> columns_;
   Index size_ = 0;
 };
+
+// A store with the fields of Store and Extra (e.g. the fields a velocity transfer adds).
+template <class Store, class... Extra>
+struct AppendFields;
+template <FieldTag... Tags, FieldTag... Extra>
+struct AppendFields<Store<Tags...>, Extra...> {
+  using type = Store<Tags..., Extra...>;
+};
+template <class S, class... Extra>
+using append_fields_t = typename AppendFields<S, Extra...>::type;
 
 }  // namespace cosmpm::particles

@@ -26,6 +26,19 @@ concept Kernel = requires(double xi, double half_width, Index node_count,
   { K::name() } -> std::convertible_to<const char*>;
 };
 
+// Whether a kernel's gradient is continuous across cells (and vanishes where its weight does).
+// The hat (Linear) declares `static constexpr bool continuous_gradient = false`: its gradient
+// jumps at cell faces and stays finite at nodes of vanishing mass, which transfers that use
+// the gradient of the grid velocity (APIC's affine matrix) cannot survive.
+template <class K>
+inline constexpr bool has_continuous_gradient = [] {
+  if constexpr (requires { K::continuous_gradient; }) {
+    return static_cast<bool>(K::continuous_gradient);
+  } else {
+    return true;
+  }
+}();
+
 // Kernels that read the particle half-width declare the valid range of it in cell units,
 // (min_half_width, max_half_width]; shape::Stencil checks it.
 template <class K>

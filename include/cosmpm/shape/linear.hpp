@@ -11,6 +11,7 @@ namespace cosmpm::shape {
 
 struct Linear {
   static constexpr int support = 2;
+  static constexpr bool continuous_gradient = false;  // shape/concept.hpp
   static const char* name() { return "Linear"; }
 
   // Nodes cell and cell + 1 of the cell holding xi; xi = node_count - 1 (the last node)

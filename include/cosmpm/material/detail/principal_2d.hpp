@@ -1,58 +1,16 @@
 #pragma once
-// Closed-form spectral split of a plane-strain stress: sigma_zz is principal already, so only the
-// in-plane 2x2 eigenproblem is solved. The returned stress is rotated back with the trial
-// eigenvectors (isotropic return mappings keep the principal directions).
+// The spectral split of a plane-strain trial stress for the isotropic principal-space returns
+// (Mohr-Coulomb): sigma_zz is principal already, so only the in-plane 2x2 eigenproblem is
+// solved, in closed form. The returned stress is rebuilt with the trial's in-plane directions
+// (isotropic returns keep them). The 3D counterpart is principal_3d.hpp.
 #include <Eigen/Core>
+#include <algorithm>
 #include <array>
 #include <cmath>
 
+#include "cosmpm/material/detail/isotropic_elasticity.hpp"
+
 namespace cosmpm::material::detail {
-
-// Principal values of [xx, yy, zz, xy] in the natural order (a, b, z) with a >= b in plane, the
-// in-plane direction as (cos 2 theta, sin 2 theta) of the a-axis, and the permutation that sorts
-// them descending: sorted[i] = natural[order[i]].
-template <class T>
-struct PlaneStrainSpectrum {
-  Eigen::Matrix<T, 3, 1> natural;  // (sigma_a, sigma_b, sigma_zz)
-  T cos_2theta{1};
-  T sin_2theta{0};
-  std::array<int, 3> order{0, 1, 2};
-
-  Eigen::Matrix<T, 3, 1> sorted() const {
-    return {natural[order[0]], natural[order[1]], natural[order[2]]};
-  }
-};
-
-template <class T>
-PlaneStrainSpectrum<T> plane_strain_spectrum(T xx, T yy, T zz, T xy) {
-  PlaneStrainSpectrum<T> out;
-  const T mean = (xx + yy) / 2;
-  const T half = (xx - yy) / 2;
-  const T radius = std::sqrt(half * half + xy * xy);
-  out.natural = {mean + radius, mean - radius, zz};
-  // radius == 0 means any in-plane direction is principal; keep the x-axis.
-  if (radius > T(0)) {
-    out.cos_2theta = half / radius;
-    out.sin_2theta = xy / radius;
-  }
-  if (zz >= out.natural[0]) {
-    out.order = {2, 0, 1};
-  } else if (zz >= out.natural[1]) {
-    out.order = {0, 2, 1};
-  } else {
-    out.order = {0, 1, 2};
-  }
-  return out;
-}
-
-// Rebuilds [xx, yy, zz, xy] from principal values in the natural order and the trial direction.
-template <class T>
-Eigen::Matrix<T, 4, 1> rotate_back(const Eigen::Matrix<T, 3, 1>& natural, T cos_2theta,
-                                   T sin_2theta) {
-  const T mean = (natural[0] + natural[1]) / 2;
-  const T half = (natural[0] - natural[1]) / 2;
-  return {mean + half * cos_2theta, mean - half * cos_2theta, natural[2], half * sin_2theta};
-}
 
 // Consistent tangent of an isotropic return in plane strain from the tangent of the principal
 // map. `principal_tangent(i, j)` = d sigma_i / d eps_j in the natural order (a, b, z) and
@@ -82,5 +40,83 @@ Eigen::Matrix<T, 4, 4> spectral_tangent(const Eigen::Matrix<T, 3, 3>& principal_
   tangent.noalias() += 2 * shear_modulus * shear_ratio * q_stress * q_strain.transpose();
   return tangent;
 }
+
+// The split of a trial [xx, yy, zz, xy]: the in-plane principal values a >= b, sigma_zz, and
+// the three sorted s1 >= s2 >= s3.
+template <class T>
+class PlaneStrainSplit {
+ public:
+  using Mat3 = Eigen::Matrix<T, 3, 3>;
+
+  explicit PlaneStrainSplit(const std::array<T, 4>& t)
+      : xx_(t[0]), yy_(t[1]), zz_(t[2]), xy_(t[3]) {
+    const T mean = (xx_ + yy_) / 2;
+    half_ = (xx_ - yy_) / 2;
+    radius_ = std::sqrt(half_ * half_ + xy_ * xy_);
+    a_ = mean + radius_;
+    b_ = mean - radius_;
+    s1_ = std::max(a_, zz_);
+    s2_ = std::min(std::max(zz_, b_), a_);
+    s3_ = std::min(b_, zz_);
+  }
+
+  T s1() const { return s1_; }
+  T s2() const { return s2_; }
+  T s3() const { return s3_; }
+
+  // The stress with sorted principal values r1 >= r2 >= r3 and the trial's directions.
+  Eigen::Matrix<T, 4, 1> back(T r1, T r2, T r3) const {
+    const Natural n = natural(r1, r2, r3);
+    const T new_mean = (n.a + n.b) / 2;
+    return {new_mean + half_ * n.ratio, new_mean - half_ * n.ratio, n.z, xy_ * n.ratio};
+  }
+
+  // The consistent tangent of the return (r1, r2, r3) with map d r / d s (sorted order).
+  Eigen::Matrix<T, 4, 4> tangent(const Mat3& sorted_map, const IsotropicElasticity<T>& elastic,
+                                 T r1, T r2, T r3) const {
+    const Natural n = natural(r1, r2, r3);
+    // sorted[i] = natural[order[i]], by the rank sigma_zz has among the three.
+    static constexpr int orders[3][3] = {{2, 0, 1}, {0, 2, 1}, {0, 1, 2}};
+    const int* order = orders[n.zz_rank];
+    Mat3 natural_map;
+    for (int i = 0; i < 3; ++i)
+      for (int j = 0; j < 3; ++j) natural_map(order[i], order[j]) = sorted_map(i, j);
+    Mat3 elastic_principal = Mat3::Constant(elastic.lambda);
+    elastic_principal.diagonal().array() += 2 * elastic.shear;
+    // Equal in-plane trial eigenvalues: the ratio's limit is the map's derivative along a - b.
+    const T shear_ratio =
+        2 * radius_ > T(1e-12) * std::max(std::abs(a_), T(1))
+            ? n.ratio
+            : (natural_map(0, 0) - natural_map(0, 1) - natural_map(1, 0) + natural_map(1, 1)) / 2;
+    const T cos_2theta = radius_ > T(0) ? half_ / radius_ : T(1);
+    const T sin_2theta = radius_ > T(0) ? xy_ / radius_ : T(0);
+    return spectral_tangent<T>(natural_map * elastic_principal, elastic.shear, shear_ratio,
+                               cos_2theta, sin_2theta);
+  }
+
+ private:
+  // The returned values in the natural order (a, b, zz) and the factor of the in-plane
+  // deviator, (a - b) / (trial a - trial b).
+  struct Natural {
+    T a, b, z, ratio;
+    int zz_rank;
+  };
+  Natural natural(T r1, T r2, T r3) const {
+    Natural n;
+    if (zz_ >= a_) {
+      n.z = r1, n.a = r2, n.b = r3, n.zz_rank = 0;
+    } else if (zz_ >= b_) {
+      n.a = r1, n.z = r2, n.b = r3, n.zz_rank = 1;
+    } else {
+      n.a = r1, n.b = r2, n.z = r3, n.zz_rank = 2;
+    }
+    n.ratio = radius_ > T(0) ? (n.a - n.b) / (2 * radius_) : T(0);
+    return n;
+  }
+
+  T xx_, yy_, zz_, xy_;
+  T half_, radius_, a_, b_;
+  T s1_, s2_, s3_;
+};
 
 }  // namespace cosmpm::material::detail

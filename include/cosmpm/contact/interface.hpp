@@ -1,0 +1,76 @@
+#pragma once
+// How the material meets a rigid body (the interface's law), and what a contact law records
+// of each contact node and of the traction along a body's edge.
+#include <cmath>
+
+#include "cosmpm/core/error.hpp"
+#include "cosmpm/core/types.hpp"
+
+namespace cosmpm::contact {
+
+// How the material meets one rigid body.
+struct Interface {
+  enum class Kind {
+    coulomb,  // Bardenhagen: no interpenetration, free separation, Coulomb friction
+    no_slip,  // single field: the material node moves with the body (no separation either)
+  };
+  Kind kind = Kind::coulomb;
+  double friction_coefficient = 0.0;  // mu = tan(delta), for Kind::coulomb
+  // Cosserat runs: hold the nodal micro-spin at the body's angular velocity at nodes in
+  // contact (the paper's w^c = 0 at the blade); free otherwise.
+  bool hold_rotation = false;
+
+  static Interface coulomb(double mu) {
+    require_non_negative("contact::Interface::coulomb", "friction coefficient mu", mu);
+    Interface i;
+    i.friction_coefficient = mu;
+    return i;
+  }
+  // mu = tan(delta) from the interface friction angle delta in degrees, 0 <= delta < 90.
+  static Interface coulomb_angle(double delta_degrees) {
+    require_in_range("contact::Interface::coulomb_angle", "interface friction angle (degrees)",
+                     delta_degrees, 0.0, 90.0, Bounds::left_closed);
+    return coulomb(std::tan(degrees_to_radians(delta_degrees)));
+  }
+  static Interface frictionless() { return coulomb(0.0); }
+  static Interface no_slip() {
+    Interface i;
+    i.kind = Kind::no_slip;
+    return i;
+  }
+  Interface& with_rotation_held(bool hold = true) {
+    hold_rotation = hold;
+    return *this;
+  }
+};
+
+enum class NodeState { separating, stick, slip, bonded };
+
+// One contact node of the last end-of-step correction.
+template <int Dim>
+struct ContactNode {
+  Index node = 0;
+  int body = 0;
+  int edge = 0;        // the body's edge the node was attributed to
+  double along = 0.0;  // position of the node's foot point along that edge, from its start
+  Vec<Dim> position = Vec<Dim>::Zero();
+  Vec<Dim> normal = Vec<Dim>::Zero();   // the body's outward unit normal used at the node
+  Vec<Dim> tangent = Vec<Dim>::Zero();  // unit vector along the edge (start -> end vertex)
+  double mass = 0.0;
+  // m (v_corrected - v_trial) / dt, less any component a boundary condition then imposed
+  Vec<Dim> force_on_material = Vec<Dim>::Zero();
+  double normal_force = 0.0;  // force_on_material . normal: >= 0 when the body pushes
+  double shear_force = 0.0;   // force_on_material . tangent
+  NodeState state = NodeState::separating;
+};
+
+// Traction the material exerts on one stretch of a body's edge, per unit out-of-plane width.
+struct TractionBin {
+  double centre = 0.0;  // along the edge from its start vertex
+  double width = 0.0;
+  double normal_traction = 0.0;  // pressure on the body's face (compression positive)
+  double shear_traction = 0.0;   // on the body along the edge tangent
+  int nodes = 0;                 // contact nodes pressing in the bin
+};
+
+}  // namespace cosmpm::contact

@@ -1,0 +1,207 @@
+#pragma once
+// The Mohr-Coulomb return in principal-stress space, after Clausen, Damkilde and Andersen (2006,
+// 2007): perfect plasticity, non-associated flow, exact (the yield surface is a set of planes).
+// It knows nothing of the stress's components or of the dimension: the plane-strain and the 3D
+// MohrCoulomb both split their trial stress into sorted principal values, call this, and rotate
+// the result back with the trial's principal directions (isotropy keeps them).
+//
+// Tension positive. Principal stresses sorted s1 >= s2 >= s3 (s3 the most compressive):
+//   f = k s1 - s3 - 2 c sqrt(k),  k = (1 + sin phi) / (1 - sin phi)
+//   g = m s1 - s3,                m = (1 + sin psi) / (1 - sin psi)
+// Regions: the yield plane; the compression edge s1 = s2 (line apex + t (1, 1, k)); the extension
+// edge s2 = s3 (line apex + t (1, k, k)); the apex c cot(phi), the default tension cut-off; and,
+// with a cut-off below the apex, the tension regions (associated flow on s_i <= cut-off), solved
+// by the general active-set return (multisurface_return.hpp).
+#include <Eigen/Core>
+#include <Eigen/Geometry>
+#include <algorithm>
+#include <cmath>
+
+#include "cosmpm/material/detail/isotropic_elasticity.hpp"
+#include "cosmpm/material/detail/multisurface_return.hpp"
+
+namespace cosmpm::material {
+
+// Where a return mapping ended; `tension` is any return that involves the cut-off planes below
+// the apex.
+enum class MohrCoulombRegion { elastic, plane, compression_edge, extension_edge, apex, tension };
+
+}  // namespace cosmpm::material
+
+namespace cosmpm::material::detail {
+
+template <class T>
+class MohrCoulombReturn {
+ public:
+  using Vec3 = Eigen::Matrix<T, 3, 1>;
+  using Mat3 = Eigen::Matrix<T, 3, 3>;
+
+  MohrCoulombReturn() = default;
+  // k, m as above, the apex stress c cot(phi) and the cut-off (the largest principal stress
+  // allowed, at most the apex).
+  MohrCoulombReturn(const IsotropicElasticity<T>& elastic, T k, T m, T offset, T apex, T cutoff)
+      : elastic_(elastic),
+        two_shear_(2 * elastic.shear),
+        k_(k),
+        offset_(offset),
+        apex_(apex),
+        cutoff_(cutoff),
+        has_cutoff_(cutoff < apex) {
+    // Yield plane f = a . s - offset, flow D b.
+    normal_ = Vec3(k, 0, -1);
+    const Vec3 b_plane(m, 0, -1);
+    const Vec3 flow_plane = elastic_times(b_plane);
+    plane_step_ = flow_plane / normal_.dot(flow_plane);
+    // Plane region: the stress removed is f * plane_step_, so the plastic shear strain
+    // sqrt(2 e:e) of its deviator / 2G is f times a constant.
+    const Vec3 step_deviator = plane_step_ - Vec3::Constant(plane_step_.mean());
+    plane_gamma_ = std::sqrt(2 * step_deviator.squaredNorm()) / (2 * elastic.shear);
+    // Compression edge s1 = s2: planes k s1 - s3 and k s2 - s3 both active. The return lies on
+    // the line apex + t (1, 1, k) and moves in the span of their flows, so t follows from the
+    // normal of that span.
+    const Vec3 b_second(0, m, -1);
+    edge_c_direction_ = Vec3(1, 1, k);
+    const Vec3 edge_c_normal = flow_plane.cross(elastic_times(b_second));
+    edge_c_scaled_normal_ = edge_c_normal / edge_c_normal.dot(edge_c_direction_);
+    // Extension edge s2 = s3: planes k s1 - s3 and k s1 - s2, line apex + t (1, k, k).
+    const Vec3 b_third(m, -1, 0);
+    edge_e_direction_ = Vec3(1, k, k);
+    const Vec3 edge_e_normal = flow_plane.cross(elastic_times(b_third));
+    edge_e_scaled_normal_ = edge_e_normal / edge_e_normal.dot(edge_e_direction_);
+    // The general solver for a cut-off below the apex: the three Mohr-Coulomb planes that can be
+    // active for sorted stresses and the three associated cut-off planes.
+    cutoff_planes_.add(normal_, offset, flow_plane);
+    cutoff_planes_.add(Vec3(0, k, -1), offset, elastic_times(b_second));
+    cutoff_planes_.add(Vec3(k, -1, 0), offset, elastic_times(b_third));
+    for (int i = 0; i < 3; ++i) {
+      const Vec3 e = Vec3::Unit(i);
+      cutoff_planes_.add(e, cutoff, elastic_times(e));
+    }
+    // With the Lode angle t, s1 = p + 2 sqrt(J2 / 3) cos t and s3 = p + 2 sqrt(J2 / 3)
+    // cos(t + 2 pi / 3), so k s1 - s3 <= (k - 1) p + 2 sqrt((k^2 + k + 1) / 3) sqrt(J2) for every
+    // t: the Drucker-Prager cone inscribed in the yield surface (it touches the yield plane
+    // where tan t = sqrt3 / (2 k + 1)).
+    inscribed_slope_ = 2 * std::sqrt((k * k + k + 1) / 3);
+  }
+
+  T apex() const { return apex_; }
+  T cutoff() const { return cutoff_; }
+  bool has_cutoff() const { return has_cutoff_; }  // below the apex
+
+  // k s1 - s3 - 2 c sqrt(k) of sorted principal stresses.
+  T yield(T s1, T s3) const { return k_ * s1 - s3 - offset_; }
+  // Whether a trial of mean stress p and second deviatoric invariant J2 lies inside the cone
+  // inscribed in the yield surface (and below the cut-off): elastic for sure, without its
+  // principal values.
+  bool inside_inscribed_cone(T p, T j2) const {
+    return (k_ - 1) * p + inscribed_slope_ * std::sqrt(j2) - offset_ <= T(0) &&
+           (!has_cutoff_ || p + 2 * std::sqrt(j2 / 3) <= cutoff_);
+  }
+  // Whether the sorted trial with f = yield(s1, s3) is elastic.
+  bool is_elastic(T s1, T f) const { return f <= T(0) && (!has_cutoff_ || s1 <= cutoff_); }
+
+  // The return of a plastic trial s1 >= s2 >= s3 with f = yield(s1, s3): the returned principal
+  // stresses r1 >= r2 >= r3, the equivalent plastic shear strain sqrt(2 e:e) of the plastic
+  // strain's deviator, and (WithMap) d r / d s in the sorted order. `Cutoff` must be
+  // has_cutoff(): a compile-time choice, so that the callers' hot path (no cut-off below the
+  // apex) holds no call across which its values would have to be spilled.
+  template <bool WithMap, bool Cutoff>
+  MohrCoulombRegion plastic_return(T s1, T s2, T s3, T f, T& r1, T& r2, T& r3, T& gamma,
+                                   Mat3* map) const {
+    if constexpr (Cutoff) {
+      return with_cutoff<WithMap>(s1, s2, s3, f, r1, r2, r3, gamma, map);
+    } else {
+      return cone<WithMap>(s1, s2, s3, f, r1, r2, r3, gamma, map);
+    }
+  }
+
+ private:
+  Vec3 elastic_times(const Vec3& v) const {
+    return Vec3::Constant(elastic_.lambda * v.sum()) + 2 * elastic_.shear * v;
+  }
+
+  // The regions of the cone with the cut-off at the apex: the yield plane first; if its result
+  // leaves the sorted sector, the edge line on that side, or the apex beyond it.
+  template <bool WithMap>
+  MohrCoulombRegion cone(T s1, T s2, T s3, T f, T& r1, T& r2, T& r3, T& gamma, Mat3* map) const {
+    r1 = s1 - plane_step_[0] * f;
+    r2 = s2 - plane_step_[1] * f;
+    r3 = s3 - plane_step_[2] * f;
+    if (r1 >= r2 && r2 >= r3) {
+      gamma = plane_gamma_ * f;
+      if constexpr (WithMap) *map = Mat3::Identity() - plane_step_ * normal_.transpose();
+      return MohrCoulombRegion::plane;
+    }
+    const bool compression_side = r1 < r2;
+    const Vec3& normal = compression_side ? edge_c_scaled_normal_ : edge_e_scaled_normal_;
+    const Vec3& direction = compression_side ? edge_c_direction_ : edge_e_direction_;
+    const T along = normal[0] * (s1 - apex_) + normal[1] * (s2 - apex_) + normal[2] * (s3 - apex_);
+    const T t = std::min(T(0), along);
+    r1 = apex_ + t * direction[0];
+    r2 = apex_ + t * direction[1];
+    r3 = apex_ + t * direction[2];
+    gamma = deviator_gamma(s1 - r1, s2 - r2, s3 - r3);
+    const bool on_edge = along <= T(0);
+    if constexpr (WithMap) {
+      if (on_edge) {
+        *map = direction * normal.transpose();
+      } else {
+        map->setZero();
+      }
+    }
+    if (!on_edge) return MohrCoulombRegion::apex;
+    return compression_side ? MohrCoulombRegion::compression_edge
+                            : MohrCoulombRegion::extension_edge;
+  }
+
+  // With a cut-off below the apex: the cone unless its result (or the trial, when f <= 0)
+  // breaks the cut-off, then the active-set return over all six planes.
+  template <bool WithMap>
+  MohrCoulombRegion with_cutoff(T s1, T s2, T s3, T f, T& r1, T& r2, T& r3, T& gamma,
+                                Mat3* map) const {
+    if (f > T(0)) {
+      const MohrCoulombRegion region = cone<WithMap>(s1, s2, s3, f, r1, r2, r3, gamma, map);
+      if (r1 <= cutoff_) return region;
+    }
+    const Vec3 trial(s1, s2, s3);
+    const T tolerance = T(1e-12) * std::max({trial.cwiseAbs().maxCoeff(), apex_, T(1)});
+    Vec3 result;
+    if (!multisurface_return(cutoff_planes_, trial, tolerance, result, WithMap ? map : nullptr)) {
+      // Unreachable for valid parameters: the cut-off octant always admits a return.
+      result = Vec3::Constant(cutoff_);
+      if constexpr (WithMap) map->setZero();
+    }
+    r1 = result[0];
+    r2 = result[1];
+    r3 = result[2];
+    gamma = deviator_gamma(s1 - r1, s2 - r2, s3 - r3);
+    return MohrCoulombRegion::tension;
+  }
+
+  // sqrt(2 e:e) of the plastic strain's deviator for the removed stress d: the deviator of d
+  // over 2G (the removed stress is D times the plastic strain, and D scales deviators by 2G).
+  T deviator_gamma(T d1, T d2, T d3) const {
+    const T removed_mean = (d1 + d2 + d3) / 3;
+    return std::sqrt(2 * ((d1 - removed_mean) * (d1 - removed_mean) +
+                          (d2 - removed_mean) * (d2 - removed_mean) +
+                          (d3 - removed_mean) * (d3 - removed_mean))) /
+           two_shear_;
+  }
+
+  IsotropicElasticity<T> elastic_{};
+  T two_shear_{};
+  T k_{};
+  T offset_{};
+  T apex_{};
+  T cutoff_{};
+  bool has_cutoff_ = false;
+  Vec3 normal_ = Vec3::Zero();
+  Vec3 plane_step_ = Vec3::Zero();
+  T plane_gamma_{};
+  T inscribed_slope_{};
+  Vec3 edge_c_direction_ = Vec3::Zero(), edge_c_scaled_normal_ = Vec3::Zero();
+  Vec3 edge_e_direction_ = Vec3::Zero(), edge_e_scaled_normal_ = Vec3::Zero();
+  PlaneSet<T> cutoff_planes_;
+};
+
+}  // namespace cosmpm::material::detail

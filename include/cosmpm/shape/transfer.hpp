@@ -1,0 +1,146 @@
+#pragma once
+// The particle-grid transfers over a stencil kept as per-axis factors (shape/separable.hpp):
+// gather (grid to particle: values and gradients of node data at a particle) and scatter
+// (particle to grid: weighted values and stress-divergence terms added to nodes), contracted
+// one axis at a time.
+#include <array>
+#include <cstddef>
+#include <type_traits>
+
+#include "cosmpm/core/compiler.hpp"
+#include "cosmpm/core/pack.hpp"
+#include "cosmpm/core/types.hpp"
+#include "cosmpm/shape/concept.hpp"
+#include "cosmpm/shape/separable.hpp"
+
+namespace cosmpm::shape {
+
+// Node data for the transfers is kept as records: C doubles per node, node n's component c
+// at n * C + c. A stencil row is then one run of S * C doubles, reached from one address.
+
+// Grid-to-particle sums over the stencil of the C components of `records`:
+//   value[c] = sum_n N_n f_c(n)                     c < C
+//   gradient[c][d] = sum_n dN_n/dx_d f_c(n)          c < G (the first G components)
+template <int Dim, int C, int G, class Value = double>
+struct Gathered {
+  std::array<Value, C> value;
+  std::array<std::array<Value, Dim>, G> gradient;
+};
+
+namespace detail {
+// The contraction of gather, for one particle or a pack; node(r, i, c) loads component c of
+// node i along x on row r.
+template <int C, int G, class Factors, class Node>
+COSMPM_ALWAYS_INLINE auto gather_rows(const Factors& s, Node&& node) {
+  static_assert(G <= C, "shape::gather: more gradient components than components");
+  using Value = typename Factors::value_type;
+  constexpr int Dim = Factors::dim;
+  constexpr int S = Factors::support;
+  // Sums start from their first term, not from zero: 0.0 + x is not x for x = -0.0, so the
+  // compiler has to keep every such addition.
+  Gathered<Dim, C, G, Value> out;
+  COSMPM_UNROLL
+  for (int r = 0; r < Factors::rows; ++r) {
+    std::array<Value, C> along;                   // sum_i N_x(i) f
+    std::array<Value, (G > 0 ? G : 1)> along_dx;  // sum_i dN_x(i) f, c < G
+    COSMPM_UNROLL
+    for (int c = 0; c < C; ++c) {
+      const Value f = node(r, 0, c);
+      along[c] = s.w[0][0] * f;
+      if (c < G) along_dx[c] = s.dw[0][0] * f;
+    }
+    COSMPM_UNROLL
+    for (int i = 1; i < S; ++i) {
+      COSMPM_UNROLL
+      for (int c = 0; c < C; ++c) {
+        const Value f = node(r, i, c);
+        along[c] += s.w[0][i] * f;
+        if (c < G) along_dx[c] += s.dw[0][i] * f;
+      }
+    }
+    Value weight;
+    std::array<Value, Dim> gradient;
+    s.row_factors(r, weight, gradient);
+    COSMPM_UNROLL
+    for (int c = 0; c < C; ++c) {
+      out.value[c] = r == 0 ? weight * along[c] : out.value[c] + weight * along[c];
+    }
+    COSMPM_UNROLL
+    for (int c = 0; c < G; ++c) {
+      out.gradient[c][0] =
+          r == 0 ? weight * along_dx[c] : out.gradient[c][0] + weight * along_dx[c];
+      COSMPM_UNROLL
+      for (int d = 1; d < Dim; ++d) {
+        out.gradient[c][d] =
+            r == 0 ? gradient[d] * along[c] : out.gradient[c][d] + gradient[d] * along[c];
+      }
+    }
+  }
+  return out;
+}
+}  // namespace detail
+
+template <int C, int G, int Dim, Kernel K>
+COSMPM_ALWAYS_INLINE Gathered<Dim, C, G> gather(const SeparableStencil<Dim, K>& s,
+                                                const double* records) {
+  return detail::gather_rows<C, G>(
+      s, [&](int r, int i, int c) { return s.template row_records<C>(records, r)[i * C + c]; });
+}
+
+template <int C, int G, int Dim, Kernel K, int W>
+COSMPM_ALWAYS_INLINE Gathered<Dim, C, G, Pack<W>> gather(const PackedStencil<Dim, K, W>& s,
+                                                         const double* records) {
+  return detail::gather_rows<C, G>(s, [&](int r, int i, int c) {
+    const Index offset = s.row_offset(r);
+    return make_pack<W>([&](int l) { return records[(s.first_node[l] + offset) * C + i * C + c]; });
+  });
+}
+
+// Particle-to-grid: adds to the C components of `records`
+//   N_n weighted[c]                                          c < W
+//   N_n weighted[c] + sum_d dN_n/dx_d by_gradient[c - W][d]   W <= c < C
+// (mass and momentum are weighted only; forces also take the stress divergence).
+template <int W, int Dim, Kernel K, std::size_t C>
+COSMPM_ALWAYS_INLINE void scatter(
+    const SeparableStencil<Dim, K>& s, double* records, const std::array<double, C>& weighted,
+    const std::type_identity_t<std::array<std::array<double, Dim>, C - W>>& by_gradient) {
+  static_assert(W <= static_cast<int>(C), "shape::scatter: more weighted-only than components");
+  constexpr int S = K::support;
+  constexpr int F = static_cast<int>(C) - W;
+  constexpr int R = static_cast<int>(C);
+  // Per node i along x: what the row factors multiply.
+  std::array<std::array<double, C>, S> along;                    // N_x(i) a + dN_x(i) b_x
+  std::array<std::array<std::array<double, Dim>, F>, S> across;  // N_x(i) b_d, d >= 1
+  COSMPM_UNROLL
+  for (int i = 0; i < S; ++i) {
+    COSMPM_UNROLL
+    for (int c = 0; c < R; ++c) along[i][c] = s.w[0][i] * weighted[c];
+    COSMPM_UNROLL
+    for (int f = 0; f < F; ++f) {
+      along[i][W + f] += s.dw[0][i] * by_gradient[f][0];
+      COSMPM_UNROLL
+      for (int d = 1; d < Dim; ++d) across[i][f][d] = s.w[0][i] * by_gradient[f][d];
+    }
+  }
+  COSMPM_UNROLL
+  for (int r = 0; r < SeparableStencil<Dim, K>::rows; ++r) {
+    double* const row = records + (s.first_node + s.row_offset(r)) * R;
+    double weight;
+    std::array<double, Dim> gradient;
+    s.row_factors(r, weight, gradient);
+    COSMPM_UNROLL
+    for (int i = 0; i < S; ++i) {
+      COSMPM_UNROLL
+      for (int c = 0; c < W; ++c) row[i * R + c] += weight * along[i][c];
+      COSMPM_UNROLL
+      for (int f = 0; f < F; ++f) {
+        double add = weight * along[i][W + f];
+        COSMPM_UNROLL
+        for (int d = 1; d < Dim; ++d) add += gradient[d] * across[i][f][d];
+        row[i * R + W + f] += add;
+      }
+    }
+  }
+}
+
+}  // namespace cosmpm::shape

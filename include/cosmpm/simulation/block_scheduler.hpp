@@ -1,0 +1,183 @@
+#pragma once
+// The deterministic parallel scatter: particles are bucketed into blocks of cells, and blocks
+// of one colour (parity per axis) never share a node, so they scatter in parallel without
+// locks; colours run in order and particles within a block in index order, so the sum at
+// every node is taken in the same order whatever the thread count.
+#include <algorithm>
+#include <array>
+#include <cstddef>
+#include <type_traits>
+#include <vector>
+
+#include "cosmpm/core/compiler.hpp"
+#include "cosmpm/core/parallel.hpp"
+#include "cosmpm/core/types.hpp"
+#include "cosmpm/grid/grid.hpp"
+#include "cosmpm/shape/concept.hpp"
+#include "cosmpm/shape/stencil_grid.hpp"
+
+namespace cosmpm {
+
+// What a particle visit of BlockScheduler::for_each_coloured reports.
+enum class Visit { done, invalid_stencil, misplaced };
+
+template <int Dim, shape::Kernel Kernel>
+class BlockScheduler {
+ public:
+  // Cells per block along each axis. Longer along x, the fastest axis of seeded particle
+  // indices, so a block's particles sit in longer runs of memory (fewer jumps in the scatter).
+  static constexpr Index block_cells(int axis) { return axis == 0 ? 16 : 4; }
+  static constexpr Index smallest_block_cells() { return block_cells(Dim > 1 ? 1 : 0); }
+  // Same-colour blocks are two apart: they share no node only if a block spans at least the
+  // kernel's support (a particle's stencil reaches support - 1 cells beyond its own).
+  static_assert(smallest_block_cells() >= Kernel::support,
+                "BlockScheduler: a particle block must span at least the kernel's support, or the "
+                "parallel scatter races; raise block_cells() to the kernel's support");
+
+  explicit BlockScheduler(const grid::Grid<Dim>& grid) {
+    Index block_total = 1;
+    for (int d = 0; d < Dim; ++d) {
+      blocks_per_axis_[d] = (grid.cells(d) + block_cells(d) - 1) / block_cells(d);
+      block_total *= blocks_per_axis_[d];
+    }
+    block_start_.assign(static_cast<std::size_t>(block_total + 1), 0);
+    for (Index block = 0; block < block_total; ++block) {
+      colour_blocks_[static_cast<std::size_t>(colour_of(block))].push_back(block);
+    }
+  }
+
+  // What a particle loop needs to find and note particles' blocks, copied out of the
+  // scheduler: a loop that stores Index values (the blocks themselves) would otherwise have
+  // to reload the block counts for every particle.
+  struct Lookup {
+    std::array<Index, Dim> blocks_per_axis;
+    Index* particle_block;
+
+    // The block of cells a particle belongs to, from the cell that holds it.
+    COSMPM_ALWAYS_INLINE Index block_of_cell(const std::array<Index, Dim>& cell) const {
+      Index block = 0;
+      for (int d = Dim - 1; d >= 0; --d) {
+        // cell >= 0: unsigned division is a shift
+        const auto b = static_cast<std::size_t>(cell[d]) / static_cast<std::size_t>(block_cells(d));
+        block = block * blocks_per_axis[d] + static_cast<Index>(b);
+      }
+      return block;
+    }
+  };
+  // Valid until the particle count changes (the next bucket()).
+  Lookup lookup() { return {blocks_per_axis_, particle_block_.data()}; }
+
+  // Called when a map moved a particle to another block: sorted again before the next scatter.
+  void mark_changed() { changed_ = true; }
+
+  // Sorts particles into blocks when needed: new particles, or particles the engine moved to
+  // another block (the scatter finds any other move and calls resort()).
+  template <class Positions>
+  void bucket(const Positions& x, Index count, const shape::StencilGrid<Dim>& stencil_grid) {
+    if (static_cast<Index>(particle_block_.size()) != count) {
+      assign(x, count, stencil_grid);
+    } else if (!changed_) {
+      return;
+    }
+    sort(count);
+  }
+
+  // Every particle's block from its position, then sorted.
+  template <class Positions>
+  void resort(const Positions& x, Index count, const shape::StencilGrid<Dim>& stencil_grid) {
+    assign(x, count, stencil_grid);
+    sort(count);
+  }
+
+  // Runs f(p) over all particles, coloured (see the top of this header), with `threads`.
+  // Returns the first particle whose visit reported an invalid stencil and the first
+  // misplaced one (`count` for none); f may also return nothing. Also notes the largest team
+  // of threads that ran a colour (last_team_size()).
+  template <class F>
+  std::array<Index, 2> for_each_coloured([[maybe_unused]] int threads, Index count, F&& f) {
+    const Index* start = block_start_.data();
+    const Index* order = order_.data();
+    Index first_invalid = count;
+    Index first_misplaced = count;
+    int team = 1;
+    for (const auto& blocks : colour_blocks_) {
+      const Index block_count = static_cast<Index>(blocks.size());
+      const Index* block_list = blocks.data();
+      COSMPM_OMP_PARALLEL_FOR_REDUCE(threads, count, 1,
+                                     reduction(min
+                                               : first_invalid, first_misplaced) reduction(max
+                                                                                           : team))
+      for (Index b = 0; b < block_count; ++b) {
+        team = std::max(team, current_team_size());
+        const Index block = block_list[b];
+        for (Index i = start[block]; i < start[block + 1]; ++i) {
+          const Index p = order[i];
+          if constexpr (std::is_void_v<std::invoke_result_t<F&, Index>>) {
+            f(p);
+          } else {
+            const Visit visit = f(p);
+            if (visit == Visit::invalid_stencil) [[unlikely]]
+              first_invalid = std::min(first_invalid, p);
+            if (visit == Visit::misplaced) [[unlikely]]
+              first_misplaced = std::min(first_misplaced, p);
+          }
+        }
+      }
+    }
+    last_team_size_ = team;
+    return {first_invalid, first_misplaced};
+  }
+
+  // Threads that ran the last coloured pass (1 when it ran serially): lets a test check that
+  // the parallel path it means to exercise actually ran.
+  int last_team_size() const { return last_team_size_; }
+
+ private:
+  template <class Positions>
+  void assign(const Positions& x, Index count, const shape::StencilGrid<Dim>& stencil_grid) {
+    particle_block_.resize(static_cast<std::size_t>(count));
+    for (Index p = 0; p < count; ++p) {
+      std::array<Index, Dim> cell;
+      for (int d = 0; d < Dim; ++d) {
+        const double xi = (x[p][d] - stencil_grid.origin[d]) * stencil_grid.inverse_cell_size[d];
+        // Clamped into the grid (NaN to 0): the stencil reports a particle outside.
+        const double clamped =
+            xi >= 0.0 ? (xi < stencil_grid.last[d] ? xi : stencil_grid.last[d]) : 0.0;
+        cell[d] = stencil_grid.cell_of(d, clamped);
+      }
+      particle_block_[p] = lookup().block_of_cell(cell);
+    }
+  }
+
+  // Counting sort by block; within a block particles keep index order, so the order (and with
+  // it every nodal sum) is a function of the blocks alone.
+  void sort(Index count) {
+    order_.resize(static_cast<std::size_t>(count));
+    std::fill(block_start_.begin(), block_start_.end(), 0);
+    for (Index p = 0; p < count; ++p) ++block_start_[particle_block_[p] + 1];
+    for (std::size_t b = 1; b < block_start_.size(); ++b) block_start_[b] += block_start_[b - 1];
+    block_fill_.assign(block_start_.begin(), block_start_.end() - 1);
+    for (Index p = 0; p < count; ++p) order_[block_fill_[particle_block_[p]]++] = p;
+    changed_ = false;
+  }
+
+  int colour_of(Index block) const {
+    int colour = 0;
+    for (int d = 0; d < Dim; ++d) {
+      colour |= static_cast<int>((block % blocks_per_axis_[d]) & 1) << d;
+      block /= blocks_per_axis_[d];
+    }
+    return colour;
+  }
+
+  std::array<Index, Dim> blocks_per_axis_{};
+  std::vector<Index> block_start_;
+  std::array<std::vector<Index>, (1 << Dim)> colour_blocks_;  // the blocks of each colour
+  std::vector<Index> block_fill_;
+  std::vector<Index> particle_block_;
+  std::vector<Index> order_;
+  bool changed_ = false;
+  int last_team_size_ = 1;
+};
+
+}  // namespace cosmpm

@@ -1,0 +1,274 @@
+#pragma once
+// Stage 3, grid to particle: particle velocity (PIC/FLIP blend) and position from the grid,
+// and the rotational degrees of freedom likewise. With the stress update (USL) the same pass
+// also takes the velocity gradient, the deformation and the constitutive update, at the same
+// start-of-step stencil: one sweep over the particles instead of three.
+//
+// Particles run pack_width at a time (core/pack.hpp): stencils, node sums, velocity, position
+// and deformation side by side, the stress update too for models that update packs; every
+// lane does the scalar path's arithmetic in the same order, so results do not depend on the
+// pack width.
+#include <array>
+#include <cmath>
+
+#include "cosmpm/core/compiler.hpp"
+#include "cosmpm/core/pack.hpp"
+#include "cosmpm/core/parallel.hpp"
+#include "cosmpm/core/types.hpp"
+#include "cosmpm/particles/fields.hpp"
+#include "cosmpm/shape/separable.hpp"
+#include "cosmpm/shape/stencil_grid.hpp"
+#include "cosmpm/shape/transfer.hpp"
+#include "cosmpm/simulation/diagnostics.hpp"
+#include "cosmpm/simulation/parameters.hpp"
+#include "cosmpm/stages/deformation.hpp"
+#include "cosmpm/stages/particle_to_grid.hpp"
+#include "cosmpm/stages/stress_update.hpp"
+#include "cosmpm/transfer/apic.hpp"
+
+namespace cosmpm::stages {
+
+namespace detail {
+
+// How a particle's velocity is updated: FLIP, a PIC/FLIP blend, or APIC's PIC velocity with
+// its affine matrix (transfer/apic.hpp).
+enum class VelocityUpdate { flip, blend, affine };
+
+// What every particle of a grid-to-particle map shares.
+template <int Dim, class Blocks>
+struct ParticleMapPass {
+  double dt;
+  double flip;
+  const double* records;  // the gather records of update_grid
+  shape::StencilGrid<Dim> stencil_grid;
+  Blocks blocks;  // BlockScheduler::Lookup
+};
+
+// Grid to particles p, ..., p + W - 1.
+template <int W, bool with_stress_update, VelocityUpdate update, class State>
+COSMPM_ALWAYS_INLINE void map_from_grid(State& s, Index p, const auto& pass, Index& first_outside,
+                                        Index& first_bad, Index& first_moved) {
+  constexpr int Dim = State::dim;
+  constexpr int R = State::rotational_dofs;
+  using Record = typename State::gather_record;
+  using P = Pack<W>;
+  auto& particles = s.particles;
+  auto& x = particles.template get<particles::field::Position<Dim>>();
+  auto& v = particles.template get<particles::field::Velocity<Dim>>();
+  const auto& half = particles.template get<particles::field::HalfWidth<Dim>>();
+  const auto& start = s.stencil_cells;
+  const double dt = pass.dt;
+  const double flip = pass.flip;
+  constexpr bool affine = update == VelocityUpdate::affine;
+  // Velocity (and the rotational rates) with gradients when the stress is updated here, then
+  // the accelerations.
+  constexpr int with_gradient = with_stress_update ? Record::with_gradient : 0;
+  shape::PackedStencil<Dim, typename State::kernel_type, W> st;
+  st.compute_from_cell_units(
+      pass.stencil_grid, [&](int l) -> const Vec<Dim>& { return start[p + l]; },
+      [&](int l) -> const Vec<Dim>& { return half[p + l]; });
+  const auto grid_values = shape::gather<Record::all, with_gradient>(st, pass.records);
+  // New positions in cell units, for the box test and the particles' blocks.
+  std::array<P, Dim> xi;
+  for (int d = 0; d < Dim; ++d) {
+    const P v_grid = grid_values.value[Record::velocity + d];
+    const P a_grid = grid_values.value[Record::acceleration + d];
+    const P v_old = make_pack<W>([&](int l) { return v[p + l][d]; });
+    const P x_old = make_pack<W>([&](int l) { return x[p + l][d]; });
+    P v_new;
+    if constexpr (affine) {
+      v_new = v_grid;
+      (void)v_old;
+      (void)a_grid;
+    } else {
+      v_new = v_old + dt * a_grid;
+      if constexpr (update == VelocityUpdate::blend) v_new = flip * v_new + (1.0 - flip) * v_grid;
+    }
+    const P x_new = x_old + dt * v_grid;
+    xi[d] = (x_new - pass.stencil_grid.origin[d]) * pass.stencil_grid.inverse_cell_size[d];
+    for (int l = 0; l < W; ++l) {
+      v[p + l][d] = lane<W>(v_new, l);
+      x[p + l][d] = lane<W>(x_new, l);
+    }
+  }
+  if constexpr (affine) {
+    const auto b = transfer::detail::affine_moment<Record::all>(
+        st, pass.stencil_grid, [&](int l) -> const Vec<Dim>& { return start[p + l]; },
+        pass.records);
+    auto& moment = particles.template get<particles::field::AffineMoment<Dim>>();
+    for (int l = 0; l < W; ++l) {
+      for (int i = 0; i < Dim; ++i) {
+        for (int j = 0; j < Dim; ++j) moment[p + l](i, j) = lane<W>(b[i][j], l);
+      }
+    }
+  }
+  constexpr bool packed = with_stress_update && packed_stress_update<State, W>;
+  [[maybe_unused]] P volume_ratio;
+  [[maybe_unused]] std::array<std::array<P, Dim>, Dim> L;
+  [[maybe_unused]] P stress_sum;  // the packed stress update's finiteness check
+  if constexpr (with_stress_update) {
+    for (int i = 0; i < Dim; ++i) L[i] = grid_values.gradient[Record::velocity + i];
+    volume_ratio = update_deformation<W, Dim>(particles, p, L, dt);
+    if constexpr (packed) stress_sum = update_stress_packed<W>(s, p, L, dt);
+  }
+  // The packed update checks all lanes with one comparison: s * 0 is 0 for a finite s and
+  // NaN otherwise, so s * 0 + J > 0 holds exactly when s is finite and J > 0.
+  [[maybe_unused]] bool pack_sound = true;
+  if constexpr (packed) pack_sound = all_lanes<W>(stress_sum * 0.0 + volume_ratio > 0.0);
+  // 0 < xi < last exactly when xi (last - xi) > 0 (false for NaN): one comparison per axis
+  // for the whole pack.
+  bool all_inside = true;
+  for (int d = 0; d < Dim; ++d) {
+    all_inside &= all_lanes<W>(xi[d] * (pass.stencil_grid.last[d] - xi[d]) > 0.0);
+  }
+  for (int l = 0; l < W; ++l) {
+    const Index q = p + l;
+    if constexpr (R > 0) {
+      std::array<double, R> spin_grid, spin_acceleration;
+      for (int k = 0; k < R; ++k) {
+        spin_grid[k] = lane<W>(grid_values.value[Record::spin + k], l);
+        spin_acceleration[k] = lane<W>(grid_values.value[Record::spin_acceleration + k], l);
+      }
+      // APIC carries no affine rotation field: the rotations take the grid's (PIC).
+      State::continuum_type::update_rotations(particles, q, dt, affine ? 0.0 : flip, spin_grid,
+                                              spin_acceleration);
+    }
+    if constexpr (with_stress_update) {
+      auto& velocity_gradient =
+          particles.template get<particles::field::VelocityGradient<Dim>>()[q];
+      if constexpr (packed) {
+        for (int i = 0; i < Dim; ++i) {
+          for (int j = 0; j < Dim; ++j) velocity_gradient(i, j) = lane<W>(L[i][j], l);
+        }
+        if (!pack_sound &&
+            !(std::isfinite(lane<W>(stress_sum, l)) && lane<W>(volume_ratio, l) > 0.0)) [[unlikely]]
+          record_first(first_bad, q);
+      } else {
+        const auto rates = rates_from<State, W>(grid_values, l);
+        store_components(velocity_gradient, rates.velocity_gradient);
+        const bool finite = update_constitutive(s, q, rates, dt);
+        if (!(finite && lane<W>(volume_ratio, l) > 0.0)) [[unlikely]]
+          record_first(first_bad, q);
+      }
+    }
+    if (!all_inside) [[unlikely]] {
+      bool inside = true;  // this lane's own test: the pack's failed for some lane
+      for (int d = 0; d < Dim; ++d) {
+        inside = inside && pass.stencil_grid.inside(d, lane<W>(xi[d], l));
+      }
+      if (!inside) {
+        record_first(first_outside, q);
+        continue;
+      }
+    }
+    // Inside, xi < cells, so the floor is already what cell_of gives (its clamp to the last
+    // cell cost 13 instructions per particle here, from reloading the node counts).
+    std::array<Index, Dim> cell;
+    for (int d = 0; d < Dim; ++d) cell[d] = static_cast<Index>(lane<W>(xi[d], l));
+    if (const Index block = pass.blocks.block_of_cell(cell);
+        block != pass.blocks.particle_block[q]) {
+      pass.blocks.particle_block[q] = block;  // sorted again at the next particle-to-grid map
+      record_first(first_moved, q);
+    }
+  }
+}
+
+template <bool with_stress_update, VelocityUpdate update, class State>
+void map_to_particles(State& s, double dt) {
+  constexpr int Dim = State::dim;
+  require_start_stencils(s, "map_to_particles");
+  const Index count = s.particles.size();
+  const ParticleMapPass<Dim, decltype(s.blocks.lookup())> pass{
+      dt, s.parameters.flip_fraction, s.gather.data(), shape::StencilGrid<Dim>(s.grid),
+      s.blocks.lookup()};
+  Index first_outside = count;
+  Index first_bad = count;
+  Index first_moved = count;
+  // pack_width particles at a time, then the rest one by one.
+  constexpr int W = pack_width;
+  const Index packs = count / W;
+  COSMPM_OMP_PARALLEL_FOR_MIN(s.threads, count, 128, first_outside, first_bad, first_moved)
+  for (Index b = 0; b < packs; ++b) {
+    map_from_grid<W, with_stress_update, update>(s, b * W, pass, first_outside, first_bad,
+                                                 first_moved);
+  }
+  for (Index p = packs * W; p < count; ++p) {
+    map_from_grid<1, with_stress_update, update>(s, p, pass, first_outside, first_bad, first_moved);
+  }
+  if (first_moved < count) s.blocks.mark_changed();
+  // A particle that left the grid usually also tore its neighbourhood: name the cause.
+  if (first_outside < count) {
+    if (s.parameters.stray_particles == StrayParticles::stop) {
+      throw_outside<Dim>(s.particles, s.grid, first_outside, s.clock);
+    }
+    s.strays_pending = true;  // the rest of the step still maps them at their start stencils
+  }
+  if (first_bad < count) {
+    throw_unstable_stress<Dim, typename State::model_type>(s.particles, first_bad, s.clock);
+  }
+}
+
+}  // namespace detail
+
+// At the end of a step: the particles outside the open grid box leave the simulation under
+// StrayParticles::freeze (kept in s.frozen) or ::remove, counted with their mass. A stray
+// whose position or velocity is not finite stops the run instead: it is unstable.
+template <class State>
+void handle_stray_particles(State& s) {
+  constexpr int Dim = State::dim;
+  s.strays.count_last_step = 0;
+  s.strays.mass_last_step = 0.0;
+  if (!s.strays_pending) return;
+  s.strays_pending = false;
+  const auto& x = s.particles.template get<particles::field::Position<Dim>>();
+  const auto& v = s.particles.template get<particles::field::Velocity<Dim>>();
+  const auto& mass = s.particles.template get<particles::field::Mass>();
+  const shape::StencilGrid<Dim> stencil_grid(s.grid);
+  const auto outside = [&](Index p) {
+    for (int d = 0; d < Dim; ++d) {
+      const double xi = (x[p][d] - stencil_grid.origin[d]) * stencil_grid.inverse_cell_size[d];
+      if (!stencil_grid.inside(d, xi)) return true;
+    }
+    return false;
+  };
+  double stray_mass = 0.0;
+  for (Index p = 0; p < s.particles.size(); ++p) {
+    if (!outside(p)) continue;
+    if (!x[p].allFinite() || !v[p].allFinite()) throw_outside<Dim>(s.particles, s.grid, p, s.clock);
+    stray_mass += mass[p];
+  }
+  const bool keep = s.parameters.stray_particles == StrayParticles::freeze;
+  const Index moved = s.particles.extract_if(outside, keep ? &s.frozen : nullptr);
+  s.strays.count += moved;
+  s.strays.mass += stray_mass;
+  s.strays.count_last_step = moved;
+  s.strays.mass_last_step = stray_mass;
+  // The step's per-particle buffers no longer match; the next map_to_grid rebuilds them.
+  s.stencil_cells.clear();
+  s.particle_rates.clear();
+}
+
+// Pure FLIP (the default) is its own instantiation: its update needs no blend.
+template <class State>
+void map_to_particles(State& s, double dt, bool with_stress_update) {
+  using detail::VelocityUpdate;
+  // Averaging the volumetric rate over cells needs every particle's rate first: no fusion.
+  const bool fused = with_stress_update && !averages_volume<State>;
+  const auto run = [&]<VelocityUpdate update>() {
+    fused ? detail::map_to_particles<true, update>(s, dt)
+          : detail::map_to_particles<false, update>(s, dt);
+  };
+  if constexpr (State::transfer_type::affine) {
+    run.template operator()<VelocityUpdate::affine>();
+  } else if (s.parameters.flip_fraction == 1.0) {
+    run.template operator()<VelocityUpdate::flip>();
+  } else {
+    run.template operator()<VelocityUpdate::blend>();
+  }
+  if (with_stress_update && !fused) {
+    velocity_gradient_from_grid(s, s.nodes.velocity, s.nodes.spin);
+    update_stress(s, dt);
+  }
+}
+
+}  // namespace cosmpm::stages

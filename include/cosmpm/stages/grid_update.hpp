@@ -1,0 +1,169 @@
+#pragma once
+// Stage 2, the grid update: nodal velocity and acceleration from momentum and force (lumped
+// mass), local damping, the contact law's phases and the boundary conditions.
+#include <cmath>
+#include <cstddef>
+#include <span>
+#include <utility>
+#include <vector>
+
+#include "cosmpm/contact/concept.hpp"
+#include "cosmpm/contact/grid_view.hpp"
+#include "cosmpm/core/parallel.hpp"
+#include "cosmpm/core/types.hpp"
+#include "cosmpm/grid/boundary.hpp"
+
+namespace cosmpm::stages {
+
+// The contact law's view of one nodal velocity field (and the rotational rates of the same
+// phase).
+template <class State>
+contact::GridView<State::dim> contact_view(State& s, std::vector<Vec<State::dim>>& velocity,
+                                           std::vector<double>& spin, double dt,
+                                           contact::Phase phase) {
+  return {s.grid,
+          s.nodes.mass,
+          velocity,
+          s.empty_node_mass(),
+          dt,
+          s.clock.time,
+          phase,
+          std::span<double>(spin),
+          contact::node_reach<typename State::kernel_type>()};
+}
+
+// The grid's face conditions on a velocity field and the continuum's on its rotational rates.
+template <class State>
+void apply_conditions(const State& s, std::vector<Vec<State::dim>>& velocity,
+                      std::vector<double>& spin) {
+  grid::apply_boundary_conditions(s.boundary, s.grid, velocity);
+  if constexpr (State::rotational_dofs > 0) s.continuum.apply_rotation_conditions(s.grid, spin);
+}
+
+// A velocity phase: the contact law's correction (if it joins the velocity phases), then the
+// boundary conditions, which win, then the law's look at the final velocities with the
+// components the conditions imposed.
+template <class State>
+void correct_and_apply_conditions(State& s, std::vector<Vec<State::dim>>& velocity,
+                                  std::vector<double>& spin, double dt, contact::Phase phase) {
+  using Contact = decltype(s.contact);
+  constexpr int Dim = State::dim;
+  if constexpr (contact::CorrectsVelocities<Contact, Dim>) {
+    auto view = contact_view(s, velocity, spin, dt, phase);
+    s.contact.correct(view);
+  }
+  if constexpr (contact::ReadsConditionedVelocities<Contact, Dim>) {
+    s.imposed.assign(static_cast<std::size_t>(s.grid.node_count()), 0);
+    grid::apply_boundary_conditions(s.boundary, s.grid, velocity, &s.imposed);
+    if constexpr (State::rotational_dofs > 0) s.continuum.apply_rotation_conditions(s.grid, spin);
+    auto view = contact_view(s, velocity, spin, dt, phase);
+    view.imposed = s.imposed;
+    s.contact.conditions_applied(std::as_const(view));
+  } else {
+    apply_conditions(s, velocity, spin);
+  }
+}
+
+// USF: the start-of-step velocity (and spin) from the momentum the particles mapped, in
+// place; contact and boundary conditions apply to it.
+template <class State>
+void grid_velocity_from_momentum(State& s, double dt) {
+  constexpr int R = State::rotational_dofs;
+  const double empty = s.empty_node_mass();
+  auto& nodes = s.nodes;
+  for (Index n = 0; n < s.grid.node_count(); ++n) {
+    if (nodes.mass[n] <= empty) {
+      nodes.momentum[n].setZero();
+      for (int k = 0; k < R; ++k) nodes.spin_momentum[n * R + k] = 0.0;
+      continue;
+    }
+    nodes.momentum[n] /= nodes.mass[n];
+    for (int k = 0; k < R; ++k)
+      nodes.spin_momentum[n * R + k] /= nodes.rotational_inertia[n * R + k];
+  }
+  correct_and_apply_conditions(s, nodes.momentum, nodes.spin_momentum, dt,
+                               contact::Phase::start_velocity);
+}
+
+// The grid update proper. Afterwards nodes.momentum holds the start velocity v^t,
+// nodes.velocity the end velocity v^{t+dt} and nodes.acceleration (v^{t+dt} - v^t) / dt; the
+// gather records of the grid-to-particle map are filled.
+template <class State>
+void update_grid(State& s, double dt) {
+  constexpr int Dim = State::dim;
+  constexpr int R = State::rotational_dofs;
+  using Record = typename State::gather_record;
+  auto& nodes = s.nodes;
+  const double empty = s.empty_node_mass();
+  const Index count = s.grid.node_count();
+  if constexpr (contact::AddsForces<decltype(s.contact), Dim>) {
+    contact::ForceView<Dim> view{s.grid,
+                                 nodes.mass,
+                                 nodes.momentum,
+                                 nodes.force,
+                                 std::span<double>(nodes.moment),
+                                 empty,
+                                 dt,
+                                 s.clock.time,
+                                 contact::node_reach<typename State::kernel_type>()};
+    s.contact.add_forces(view);
+  }
+  const double damping = s.parameters.damping;
+  // Cundall: oppose the motion with a fraction of the unbalanced force, per component.
+  const auto damped = [damping](double force, double rate) {
+    const double sign = rate > 0.0 ? 1.0 : (rate < 0.0 ? -1.0 : 0.0);
+    return force - damping * std::abs(force) * sign;
+  };
+  COSMPM_OMP_PARALLEL_FOR(s.threads, count, 512)
+  for (Index n = 0; n < count; ++n) {
+    const double m = nodes.mass[n];
+    if (m <= empty) {
+      nodes.momentum[n].setZero();
+      nodes.velocity[n].setZero();
+      for (int k = 0; k < R; ++k) nodes.spin_momentum[n * R + k] = nodes.spin[n * R + k] = 0.0;
+      continue;
+    }
+    const double inverse_mass = 1.0 / m;  // one division per node instead of 2 Dim
+    const Vec<Dim> v_start = nodes.momentum[n] * inverse_mass;
+    Vec<Dim> force = nodes.force[n];
+    if (damping > 0.0) {
+      for (int d = 0; d < Dim; ++d) force[d] = damped(force[d], v_start[d]);
+    }
+    nodes.momentum[n] = v_start;
+    nodes.velocity[n] = v_start + (dt * inverse_mass) * force;
+    for (int k = 0; k < R; ++k) {
+      const std::size_t i = static_cast<std::size_t>(n * R + k);
+      const double inertia = nodes.rotational_inertia[i];
+      const double spin_start = nodes.spin_momentum[i] / inertia;
+      double moment = nodes.moment[i];
+      if (damping > 0.0) moment = damped(moment, spin_start);
+      nodes.spin_momentum[i] = spin_start;
+      nodes.spin[i] = spin_start + dt * moment / inertia;
+    }
+  }
+  // Contact acts on the updated velocity only, so the acceleration (and through FLIP the
+  // particles) carries its impulse; boundary conditions come last and win.
+  apply_conditions(s, nodes.momentum, nodes.spin_momentum);
+  correct_and_apply_conditions(s, nodes.velocity, nodes.spin, dt, contact::Phase::end_velocity);
+  // The grid-to-particle pass reads each node's velocity and acceleration as one record.
+  s.gather.resize(static_cast<std::size_t>(Record::all * count));
+  double* const gathered = s.gather.data();
+  const double inverse_dt = 1.0 / dt;
+  COSMPM_OMP_PARALLEL_FOR(s.threads, count, 512)
+  for (Index n = 0; n < count; ++n) {
+    nodes.acceleration[n] = (nodes.velocity[n] - nodes.momentum[n]) * inverse_dt;
+    double* const record = gathered + n * Record::all;
+    for (int d = 0; d < Dim; ++d) {
+      record[Record::velocity + d] = nodes.velocity[n][d];
+      record[Record::acceleration + d] = nodes.acceleration[n][d];
+    }
+    for (int k = 0; k < R; ++k) {
+      const std::size_t i = static_cast<std::size_t>(n * R + k);
+      nodes.spin_acceleration[i] = (nodes.spin[i] - nodes.spin_momentum[i]) * inverse_dt;
+      record[Record::spin + k] = nodes.spin[i];
+      record[Record::spin_acceleration + k] = nodes.spin_acceleration[i];
+    }
+  }
+}
+
+}  // namespace cosmpm::stages

@@ -1,0 +1,324 @@
+#pragma once
+// Stage 1, particle to grid: mass, momentum (and the rotational degrees of freedom's inertia
+// and momentum) and, with forces, the internal and external forces (and moments), scattered
+// block by block in colour order (simulation/block_scheduler.hpp), so every nodal sum is
+// taken in the same order whatever the thread count. Also the later particle-to-grid maps of
+// a step, at the stencils of its first: USF's forces after the stress update and MUSL's
+// remapped momentum.
+#include <algorithm>
+#include <array>
+#include <cstddef>
+#include <string>
+#include <vector>
+
+#include "cosmpm/core/compiler.hpp"
+#include "cosmpm/core/error.hpp"
+#include "cosmpm/core/types.hpp"
+#include "cosmpm/particles/fields.hpp"
+#include "cosmpm/shape/separable.hpp"
+#include "cosmpm/shape/stencil_grid.hpp"
+#include "cosmpm/shape/transfer.hpp"
+#include "cosmpm/simulation/block_scheduler.hpp"
+#include "cosmpm/stages/grid_update.hpp"
+#include "cosmpm/transfer/apic.hpp"
+
+namespace cosmpm::stages {
+
+// The stencil of particle p at the start of the step (the last map_to_grid).
+template <class State>
+COSMPM_ALWAYS_INLINE void start_stencil(const State& s, Index p,
+                                        const shape::StencilGrid<State::dim>& stencil_grid,
+                                        typename State::stencil_type& stencil) {
+  stencil.compute_from_cell_units(
+      stencil_grid, s.stencil_cells[p],
+      s.particles.template get<particles::field::HalfWidth<State::dim>>()[p]);
+}
+
+template <class State>
+void require_start_stencils(const State& s, const char* where) {
+  require(static_cast<Index>(s.stencil_cells.size()) == s.particles.size(),
+          std::string("Simulation::") + where +
+              ": no stencils for this step's particles; call map_to_grid first");
+}
+
+// A particle's force (and moments) on the nodes as N weighted + grad N . by_gradient: weight
+// m g and the stress divergence (Continuum::internal_force_coefficients), then the
+// continuum's rotational terms. `weighted` points at the force's first component.
+template <class State, std::size_t F>
+COSMPM_ALWAYS_INLINE void force_contribution(
+    double mass, double volume, const typename State::model_type::stress_type& stress,
+    const Vec<State::dim>& gravity, double* weighted,
+    std::array<std::array<double, State::dim>, F>& by_gradient) {
+  constexpr int Dim = State::dim;
+  static_assert(F == Dim + State::rotational_dofs, "force and moment components");
+  using Continuum = typename State::continuum_type;
+  const auto b = Continuum::internal_force_coefficients(stress, volume);
+  for (int d = 0; d < Dim; ++d) {
+    weighted[d] = mass * gravity[d];
+    for (int e = 0; e < Dim; ++e) by_gradient[d][e] = b[d][e];
+  }
+  Continuum::rotational_force_terms(stress, volume, weighted + Dim, by_gradient.data() + Dim);
+}
+
+// A particle's momentum terms of the particle-to-grid maps: m v at `momentum` and, for an
+// affine transfer (transfer/apic.hpp), m (v - C x) there and m C at `affine`, which
+// nodal_momentum() completes per node; C = B D^-1 with the D of the map's stencil `st` at the
+// particle's position in cell units `x_in_cells`.
+template <class State, class Particles>
+COSMPM_ALWAYS_INLINE void momentum_terms(
+    const Particles& particles, Index p, double mass, const Vec<State::dim>& velocity,
+    [[maybe_unused]] const typename State::stencil_type& st,
+    [[maybe_unused]] const Vec<State::dim>& x_in_cells,
+    [[maybe_unused]] const shape::StencilGrid<State::dim>& grid, double* momentum,
+    [[maybe_unused]] double* affine) {
+  constexpr int Dim = State::dim;
+  if constexpr (State::transfer_type::affine) {
+    const Mat<Dim> c = transfer::detail::affine_velocity(
+        particles.template get<particles::field::AffineMoment<Dim>>()[p], st, grid, x_in_cells);
+    for (int d = 0; d < Dim; ++d) {
+      double cx = 0.0;
+      for (int e = 0; e < Dim; ++e) {
+        cx += c(d, e) * (x_in_cells[e] / grid.inverse_cell_size[e]);
+        affine[d * Dim + e] = mass * c(d, e);
+      }
+      momentum[d] = mass * (velocity[d] - cx);
+    }
+  } else {
+    for (int d = 0; d < Dim; ++d) momentum[d] = mass * velocity[d];
+  }
+}
+
+// A node's momentum from its record: the scattered momentum and, for an affine transfer, the
+// affine sum times the node's position from the grid origin.
+template <class State>
+COSMPM_ALWAYS_INLINE Vec<State::dim> nodal_momentum(const State& s, Index n, const double* momentum,
+                                                    [[maybe_unused]] const double* affine) {
+  constexpr int Dim = State::dim;
+  Vec<Dim> out;
+  for (int d = 0; d < Dim; ++d) out[d] = momentum[d];
+  if constexpr (State::transfer_type::affine) {
+    const auto ijk = s.grid.node_ijk(n);
+    for (int d = 0; d < Dim; ++d) {
+      for (int e = 0; e < Dim; ++e) {
+        out[d] += affine[d * Dim + e] * (static_cast<double>(ijk[e]) * s.grid.cell_size()[e]);
+      }
+    }
+  }
+  return out;
+}
+
+namespace detail {
+
+// The particle-to-grid pass of map_to_grid into s.scatter. False (and nothing usable) if a
+// particle no longer lies in the block it was sorted into.
+template <bool with_forces, class State>
+bool scatter_particles(State& s) {
+  constexpr int Dim = State::dim;
+  constexpr int R = State::rotational_dofs;
+  using Record = typename State::scatter_record;
+  using Continuum = typename State::continuum_type;
+  using Model = typename State::model_type;
+  constexpr int W = Record::weighted;
+  constexpr int C = with_forces ? Record::all : W;
+  const Index nodes = s.grid.node_count();
+  s.scatter.resize(static_cast<std::size_t>(Record::all * nodes));
+  std::fill(s.scatter.begin(), s.scatter.begin() + C * nodes, 0.0);
+  // Array addresses, captured by value below: the loop runs short of registers, and a
+  // pointer in the closure is one load where a captured vector is two.
+  const auto& particles = s.particles;
+  const auto* const x = particles.template get<particles::field::Position<Dim>>().data();
+  const auto* const v = particles.template get<particles::field::Velocity<Dim>>().data();
+  const double* const mass = particles.template get<particles::field::Mass>().data();
+  const double* const vol = particles.template get<particles::field::Volume>().data();
+  const auto* const half = particles.template get<particles::field::HalfWidth<Dim>>().data();
+  const auto* const stress = particles.template get<particles::field::Stress<Model>>().data();
+  const auto blocks = s.blocks.lookup();
+  const Index* const particle_block = blocks.particle_block;
+  const Vec<Dim> gravity = s.parameters.gravity;
+  const Index count = particles.size();
+  const shape::StencilGrid<Dim> stencil_grid(s.grid);
+  s.stencil_cells.resize(static_cast<std::size_t>(count));
+  Vec<Dim>* const stencil_cells = s.stencil_cells.data();
+  double* const records = s.scatter.data();
+  // Named outside the lambda: GCC 12 fails on C - W inside it.
+  using Weighted = std::array<double, C>;
+  using ByGradient = std::array<std::array<double, Dim>, C - W>;
+  // Inlined into the block loop.
+  const auto [first_invalid, first_misplaced] = s.blocks.for_each_coloured(
+      s.threads, count,
+      [&, x, v, mass, vol, half, stress, particle_block, stencil_cells, records](Index p)
+          COSMPM_INLINE_LAMBDA {
+            typename State::stencil_type st;
+            // Reported after the (possibly parallel) loop.
+            if (!st.try_compute(stencil_grid, x[p], half[p])) [[unlikely]]
+              return Visit::invalid_stencil;
+            if (blocks.block_of_cell(st.cell) != particle_block[p]) [[unlikely]]
+              return Visit::misplaced;
+            for (int d = 0; d < Dim; ++d) stencil_cells[p][d] = st.position_in_cells[d];
+            const double mp = mass[p];
+            Weighted weighted;
+            ByGradient by_gradient;
+            weighted[Record::mass] = mp;
+            if constexpr (State::transfer_type::affine) {
+              momentum_terms<State>(particles, p, mp, v[p], st, stencil_cells[p], stencil_grid,
+                                    weighted.data() + Record::momentum,
+                                    weighted.data() + Record::affine);
+            } else {
+              for (int d = 0; d < Dim; ++d) weighted[Record::momentum + d] = mp * v[p][d];
+            }
+            if constexpr (R > 0) {
+              const auto inertia = Continuum::rotational_inertia(particles, p, mp);
+              const auto spin = Continuum::rotational_velocity(particles, p);
+              for (int k = 0; k < R; ++k) {
+                weighted[Record::inertia + k] = inertia[k];
+                weighted[Record::spin_momentum + k] = inertia[k] * spin[k];
+              }
+            }
+            if constexpr (with_forces) {
+              force_contribution<State>(mp, vol[p], stress[p], gravity,
+                                        weighted.data() + Record::force, by_gradient);
+            }
+            shape::scatter<W>(st, records, weighted, by_gradient);
+            return Visit::done;
+          });
+  if (first_invalid < count) {
+    typename State::stencil_type st;
+    st.compute(stencil_grid, x[first_invalid], half[first_invalid]);  // throws, naming it
+  }
+  return first_misplaced == count;
+}
+
+}  // namespace detail
+
+// Particle mass and momentum (and, with_forces, internal and external forces) to the nodes.
+// Buckets particles into coloured blocks first.
+template <class State>
+void map_to_grid(State& s, bool with_forces) {
+  constexpr int Dim = State::dim;
+  constexpr int R = State::rotational_dofs;
+  using Record = typename State::scatter_record;
+  const auto& x = s.particles.template get<particles::field::Position<Dim>>();
+  const shape::StencilGrid<Dim> stencil_grid(s.grid);
+  s.blocks.bucket(x, s.particles.size(), stencil_grid);
+  const auto scatter = [&] {
+    return with_forces ? detail::scatter_particles<true>(s) : detail::scatter_particles<false>(s);
+  };
+  if (!scatter()) {
+    // Particles were moved outside the engine since the last step (e.g. by the user): the
+    // blocks no longer keep same-colour scatters apart. Sort again and redo.
+    s.blocks.resort(x, s.particles.size(), stencil_grid);
+    require(scatter(), "Simulation::map_to_grid: particle blocks inconsistent after sorting");
+  }
+  // A grid distributed over several processes would sum the records of the nodes its
+  // neighbours share here (halo exchange), before any node pass reads them.
+  const Index count = s.grid.node_count();
+  const Index size = with_forces ? Record::all : Record::weighted;  // per node
+  const double* const scattered = s.scatter.data();
+  auto& nodes = s.nodes;
+  for (Index n = 0; n < count; ++n) {
+    const double* const record = scattered + n * size;
+    nodes.mass[n] = record[Record::mass];
+    if constexpr (State::transfer_type::affine) {
+      nodes.momentum[n] = nodal_momentum(s, n, record + Record::momentum, record + Record::affine);
+    } else {
+      for (int d = 0; d < Dim; ++d) nodes.momentum[n][d] = record[Record::momentum + d];
+    }
+    for (int d = 0; d < Dim; ++d) {
+      if (with_forces) nodes.force[n][d] = record[Record::force + d];
+    }
+    for (int k = 0; k < R; ++k) {
+      nodes.rotational_inertia[n * R + k] = record[Record::inertia + k];
+      nodes.spin_momentum[n * R + k] = record[Record::spin_momentum + k];
+      if (with_forces) nodes.moment[n * R + k] = record[Record::moment + k];
+    }
+  }
+}
+
+// USF only: forces after the stress update (mass and momentum are already on the grid, and
+// grid_velocity_from_momentum turned the momenta into velocities: they are restored).
+template <class State>
+void map_forces_to_grid(State& s) {
+  constexpr int Dim = State::dim;
+  constexpr int R = State::rotational_dofs;
+  using Model = typename State::model_type;
+  auto& nodes = s.nodes;
+  const Index count = s.grid.node_count();
+  for (Index n = 0; n < count; ++n) {
+    nodes.momentum[n] *= nodes.mass[n];
+    for (int k = 0; k < R; ++k)
+      nodes.spin_momentum[n * R + k] *= nodes.rotational_inertia[n * R + k];
+  }
+  constexpr int forces = Dim + R;
+  s.scatter.resize(std::max(s.scatter.size(), static_cast<std::size_t>(forces * count)));
+  std::fill(s.scatter.begin(), s.scatter.begin() + forces * count, 0.0);
+  require_start_stencils(s, "map_forces_to_grid");
+  const auto& mass = s.particles.template get<particles::field::Mass>();
+  const auto& vol = s.particles.template get<particles::field::Volume>();
+  const auto& stress = s.particles.template get<particles::field::Stress<Model>>();
+  const Vec<Dim> gravity = s.parameters.gravity;
+  const shape::StencilGrid<Dim> stencil_grid(s.grid);
+  double* const records = s.scatter.data();
+  s.blocks.for_each_coloured(s.threads, s.particles.size(), [&](Index p) {
+    typename State::stencil_type st;
+    start_stencil(s, p, stencil_grid, st);
+    std::array<double, forces> weighted;
+    std::array<std::array<double, Dim>, forces> by_gradient;
+    force_contribution<State>(mass[p], vol[p], stress[p], gravity, weighted.data(), by_gradient);
+    shape::scatter<0>(st, records, weighted, by_gradient);
+  });
+  for (Index n = 0; n < count; ++n) {
+    for (int d = 0; d < Dim; ++d) nodes.force[n][d] = records[n * forces + d];
+    for (int k = 0; k < R; ++k) nodes.moment[n * R + k] = records[n * forces + Dim + k];
+  }
+}
+
+// MUSL: maps the updated particle momenta back to the grid (with the start-of-step stencils,
+// as the grid mass was) into nodes.velocity (and spin), for the strain rate; contact (its
+// remapped-velocity phase, with the step's dt) and boundary conditions apply to it.
+template <class State>
+void remap_momentum(State& s, double dt) {
+  constexpr int Dim = State::dim;
+  constexpr int R = State::rotational_dofs;
+  using Continuum = typename State::continuum_type;
+  const auto& v = s.particles.template get<particles::field::Velocity<Dim>>();
+  const auto& mass = s.particles.template get<particles::field::Mass>();
+  auto& nodes = s.nodes;
+  const Index count = s.grid.node_count();
+  require_start_stencils(s, "remap_momentum");
+  constexpr int affine = State::affine_terms;  // after the rotational momenta
+  constexpr int momenta = Dim + R + affine;
+  s.scatter.resize(std::max(s.scatter.size(), static_cast<std::size_t>(momenta * count)));
+  std::fill(s.scatter.begin(), s.scatter.begin() + momenta * count, 0.0);
+  const shape::StencilGrid<Dim> stencil_grid(s.grid);
+  double* const records = s.scatter.data();
+  s.blocks.for_each_coloured(s.threads, s.particles.size(), [&](Index p) {
+    typename State::stencil_type st;
+    start_stencil(s, p, stencil_grid, st);
+    std::array<double, momenta> weighted;
+    momentum_terms<State>(s.particles, p, mass[p], v[p], st, s.stencil_cells[p], stencil_grid,
+                          weighted.data(), weighted.data() + Dim + R);
+    if constexpr (R > 0) {
+      const auto inertia = Continuum::rotational_inertia(s.particles, p, mass[p]);
+      const auto spin = Continuum::rotational_velocity(s.particles, p);
+      for (int k = 0; k < R; ++k) weighted[Dim + k] = inertia[k] * spin[k];
+    }
+    shape::scatter<momenta>(st, records, weighted, {});
+  });
+  const double empty = s.empty_node_mass();
+  for (Index n = 0; n < count; ++n) {
+    if (nodes.mass[n] <= empty) {
+      nodes.velocity[n].setZero();
+      for (int k = 0; k < R; ++k) nodes.spin[n * R + k] = 0.0;
+      continue;
+    }
+    const double* const record = records + n * momenta;
+    nodes.velocity[n] = nodal_momentum(s, n, record, record + Dim + R) / nodes.mass[n];
+    for (int k = 0; k < R; ++k) {
+      nodes.spin[n * R + k] = records[n * momenta + Dim + k] / nodes.rotational_inertia[n * R + k];
+    }
+  }
+  correct_and_apply_conditions(s, nodes.velocity, nodes.spin, dt,
+                               contact::Phase::remapped_velocity);
+}
+
+}  // namespace cosmpm::stages

@@ -1,0 +1,230 @@
+#pragma once
+// Stage 4, the stress update: each particle's rates (velocity gradient; with rotational
+// degrees of freedom also their rates and gradients) from a nodal field, then the continuum's
+// objective update, the constitutive model's return and the deformation. USL runs the same
+// per-particle pieces inside its grid-to-particle pass (stages/grid_to_particle.hpp).
+#include <algorithm>
+#include <array>
+#include <cmath>
+#include <span>
+#include <string>
+#include <vector>
+
+#include "cosmpm/core/compiler.hpp"
+#include "cosmpm/core/error.hpp"
+#include "cosmpm/core/pack.hpp"
+#include "cosmpm/core/parallel.hpp"
+#include "cosmpm/core/types.hpp"
+#include "cosmpm/material/concept.hpp"
+#include "cosmpm/particles/fields.hpp"
+#include "cosmpm/shape/stencil_grid.hpp"
+#include "cosmpm/shape/transfer.hpp"
+#include "cosmpm/simulation/diagnostics.hpp"
+#include "cosmpm/stages/deformation.hpp"
+#include "cosmpm/stages/particle_to_grid.hpp"
+
+namespace cosmpm::stages {
+
+// to = from, component by component: Eigen's packet stores are may-alias vector types, after
+// which the compiler reloads every array pointer in the loop.
+template <class Matrix>
+COSMPM_ALWAYS_INLINE void store_components(Matrix& to, const Matrix& from) {
+  for (Index i = 0; i < Matrix::SizeAtCompileTime; ++i) to.data()[i] = from.data()[i];
+}
+
+// Lane l's rates from a gather whose first fields (velocity, then the rotational rates) carry
+// gradients.
+template <class State, int W, class GridValues>
+COSMPM_ALWAYS_INLINE typename State::rates_type rates_from(const GridValues& grid_values, int l) {
+  constexpr int Dim = State::dim;
+  using Record = typename State::gather_record;
+  typename State::rates_type rates;
+  for (int i = 0; i < Dim; ++i) {
+    for (int j = 0; j < Dim; ++j) {
+      rates.velocity_gradient(i, j) = lane<W>(grid_values.gradient[Record::velocity + i][j], l);
+    }
+  }
+  for (int k = 0; k < State::rotational_dofs; ++k) {
+    rates.spin[k] = lane<W>(grid_values.value[Record::spin + k], l);
+    for (int d = 0; d < Dim; ++d) {
+      rates.spin_gradient[k][d] = lane<W>(grid_values.gradient[Record::spin + k][d], l);
+    }
+  }
+  return rates;
+}
+
+// The constitutive update of one particle; false if the stress came out non-finite.
+template <class State>
+COSMPM_ALWAYS_INLINE bool update_constitutive(State& s, Index q,
+                                              const typename State::rates_type& rates, double dt) {
+  using Model = typename State::model_type;
+  auto& stress = s.particles.template get<particles::field::Stress<Model>>()[q];
+  State::continuum_type::update_stress(
+      s.model(), rates, dt, stress,
+      s.particles.template get<particles::field::MaterialState<Model>>()[q],
+      s.particles.template get<particles::field::Strain<Model>>()[q]);
+  // A non-finite component makes the sum non-finite (finite stresses near 1e308 that would
+  // overflow it do not occur in soil).
+  return std::isfinite(stress.sum());
+}
+
+// Whether the stress update of the grid-to-particle loop runs on packs of W particles: for
+// continua and models that update packs of components (Continuum::updates_values).
+template <class State, int W>
+inline constexpr bool packed_stress_update =
+    State::dim == 2 && State::continuum_type::template updates_values<Pack<W>>;
+
+// The stress update of particles p, ..., p + W - 1 on packs, with their velocity gradient L;
+// returns the sum of each new stress's components (non-finite when one is).
+template <int W, class State>
+COSMPM_ALWAYS_INLINE Pack<W> update_stress_packed(
+    State& s, Index p, const std::array<std::array<Pack<W>, State::dim>, State::dim>& L,
+    double dt) {
+  using P = Pack<W>;
+  using Model = typename State::model_type;
+  auto& stress = s.particles.template get<particles::field::Stress<Model>>();
+  auto& strain = s.particles.template get<particles::field::Strain<Model>>();
+  static constexpr std::array<int, 3> strain_components{0, 1, 3};  // zz stays (plane strain)
+  std::array<P, 4> sigma;
+  std::array<P, 4> e;
+  e[2] = P{};  // zz: not accumulated (plane strain), not stored
+  for (int c = 0; c < 4; ++c) sigma[c] = make_pack<W>([&](int l) { return stress[p + l][c]; });
+  for (const int c : strain_components)
+    e[c] = make_pack<W>([&](int l) { return strain[p + l][c]; });
+  State::continuum_type::update_stress_values(s.model(), L, dt, sigma, e);
+  for (int l = 0; l < W; ++l) {
+    for (int c = 0; c < 4; ++c) stress[p + l][c] = lane<W>(sigma[c], l);
+    for (const int c : strain_components) strain[p + l][c] = lane<W>(e[c], l);
+  }
+  return (sigma[0] + sigma[1]) + (sigma[2] + sigma[3]);
+}
+
+// Stage 4a: particle rates from a nodal velocity field (and the rotational rates, ignored by a
+// classical continuum), at the stencils of the start of the step.
+template <class State>
+void velocity_gradient_from_grid(State& s, const std::vector<Vec<State::dim>>& node_velocity,
+                                 const std::vector<double>& node_spin) {
+  constexpr int Dim = State::dim;
+  constexpr int R = State::rotational_dofs;
+  using Record = typename State::gather_record;
+  const Index nodes = s.grid.node_count();
+  require(static_cast<Index>(node_velocity.size()) == nodes &&
+              static_cast<Index>(node_spin.size()) == R * nodes,
+          "Simulation::velocity_gradient_from_grid: a nodal field does not match the grid's " +
+              std::to_string(nodes) + " nodes");
+  s.gather.resize(static_cast<std::size_t>(Record::all * nodes));
+  constexpr int size = Record::with_gradient;  // per node: velocity and the rotational rates
+  for (Index n = 0; n < nodes; ++n) {
+    for (int d = 0; d < Dim; ++d) s.gather[n * size + Record::velocity + d] = node_velocity[n][d];
+    for (int k = 0; k < R; ++k) s.gather[n * size + Record::spin + k] = node_spin[n * R + k];
+  }
+  const double* const records = s.gather.data();
+  const shape::StencilGrid<Dim> stencil_grid(s.grid);
+  require_start_stencils(s, "velocity_gradient_from_grid");
+  auto& L = s.particles.template get<particles::field::VelocityGradient<Dim>>();
+  const Index count = s.particles.size();
+  s.particle_rates.resize(static_cast<std::size_t>(count));
+  COSMPM_OMP_PARALLEL_FOR(s.threads, count, 256)
+  for (Index p = 0; p < count; ++p) {
+    typename State::stencil_type st;
+    start_stencil(s, p, stencil_grid, st);
+    const auto rates = rates_from<State, 1>(shape::gather<size, size>(st, records), 0);
+    L[p] = rates.velocity_gradient;
+    s.particle_rates[p] = rates;
+  }
+}
+
+// Whether the continuum averages the volumetric strain rate over cells (antilocking::FBar).
+template <class State>
+inline constexpr bool averages_volume = [] {
+  if constexpr (requires { State::continuum_type::antilocking_type::averages_volume; }) {
+    return static_cast<bool>(State::continuum_type::antilocking_type::averages_volume);
+  } else {
+    return false;
+  }
+}();
+
+// F-bar in rate form (continuum/antilocking.hpp): each particle's volumetric strain rate
+// becomes the volume-weighted average over the particles of its start-of-step cell, in the
+// rates of stage 4a and the particles' velocity gradient field. The sums run in particle
+// order, so they do not depend on the thread count.
+template <class State>
+void average_volumetric_rate(State& s) {
+  constexpr int Dim = State::dim;
+  require_start_stencils(s, "average_volumetric_rate");
+  const shape::StencilGrid<Dim> stencil_grid(s.grid);
+  const auto cell_of = [&](Index p) {
+    Index cell = 0;
+    for (int d = Dim - 1; d >= 0; --d) {
+      cell = cell * s.grid.cells(d) + stencil_grid.cell_of(d, s.stencil_cells[p][d]);
+    }
+    return cell;
+  };
+  Index cells = 1;
+  for (int d = 0; d < Dim; ++d) cells *= s.grid.cells(d);
+  s.cell_sums.assign(static_cast<std::size_t>(2 * cells), 0.0);  // volume, volume x div v
+  const auto& volume = s.particles.template get<particles::field::Volume>();
+  const Index count = s.particles.size();
+  for (Index p = 0; p < count; ++p) {
+    const Index c = cell_of(p);
+    s.cell_sums[2 * c] += volume[p];
+    s.cell_sums[2 * c + 1] += volume[p] * s.particle_rates[p].velocity_gradient.trace();
+  }
+  auto& L = s.particles.template get<particles::field::VelocityGradient<Dim>>();
+  for (Index p = 0; p < count; ++p) {
+    const Index c = cell_of(p);
+    Mat<Dim>& rate = s.particle_rates[p].velocity_gradient;
+    const double shift = (s.cell_sums[2 * c + 1] / s.cell_sums[2 * c] - rate.trace()) / Dim;
+    for (int d = 0; d < Dim; ++d) rate(d, d) += shift;
+    L[p] = rate;
+  }
+}
+
+// Stage 4b: constitutive update, deformation gradient and volume from the rates of 4a. The
+// model takes the particles in runs of fixed length, one call each (material::update_batch):
+// a model with a batched return (CosseratDruckerPrager) is faster so, and the runs do not
+// depend on the thread count.
+template <class State>
+void update_stress(State& s, double dt) {
+  constexpr int Dim = State::dim;
+  using Model = typename State::model_type;
+  using Continuum = typename State::continuum_type;
+  using strain_type = typename Model::strain_type;
+  require(static_cast<Index>(s.particle_rates.size()) == s.particles.size(),
+          "Simulation::update_stress: call velocity_gradient_from_grid first");
+  if constexpr (averages_volume<State>) average_volumetric_rate(s);
+  const Index count = s.particles.size();
+  auto& stress = s.particles.template get<particles::field::Stress<Model>>();
+  auto& state = s.particles.template get<particles::field::MaterialState<Model>>();
+  auto& strain = s.particles.template get<particles::field::Strain<Model>>();
+  constexpr Index run = 64;
+  const Index runs = (count + run - 1) / run;
+  Index first_bad = count;
+  COSMPM_OMP_PARALLEL_FOR_MIN(s.threads, count, 4, first_bad)
+  for (Index r = 0; r < runs; ++r) {
+    const Index begin = r * run;
+    const Index size = std::min(run, count - begin);
+    const auto points = static_cast<std::size_t>(size);
+    std::array<strain_type, run> increment;
+    for (Index k = 0; k < size; ++k) {
+      increment[k] =
+          Continuum::rotate_and_increment(s.particle_rates[begin + k], dt, stress[begin + k]);
+    }
+    material::update_batch(s.model(), std::span(stress.data() + begin, points),
+                           std::span(state.data() + begin, points),
+                           std::span<const strain_type>(increment.data(), points));
+    for (Index k = 0; k < size; ++k) {
+      const Index p = begin + k;
+      Continuum::accumulate_strain(strain[p], increment[k]);
+      std::array<std::array<double, Dim>, Dim> L;
+      for (int i = 0; i < Dim; ++i) {
+        for (int j = 0; j < Dim; ++j) L[i][j] = s.particle_rates[p].velocity_gradient(i, j);
+      }
+      const double volume_ratio = update_deformation<1, Dim>(s.particles, p, L, dt);
+      if (!(std::isfinite(stress[p].sum()) && volume_ratio > 0.0)) record_first(first_bad, p);
+    }
+  }
+  if (first_bad < count) throw_unstable_stress<Dim, Model>(s.particles, first_bad, s.clock);
+}
+
+}  // namespace cosmpm::stages
