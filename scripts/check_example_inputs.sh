@@ -78,6 +78,8 @@ expect 1 "--flip = 0.9 (command line): blends FLIP into --transfer apic" "$e3" -
 expect 1 "--antilocking = fbar (command line): applies to nonpolar soil only" "$e3" --polar true \
   --antilocking fbar
 expect 1 "--transfer apic --antilocking none is not among the compositions" "$e3" --transfer apic
+expect 1 "--floor-friction = 20 deg (command line): applies to --floor friction only" "$e3" \
+  --floor-friction 20
 expect 0 "results in run" "$e3" "${smoke[@]}" --frames false --out run
 expect 1 "holds the results of an earlier run" "$e3" "${smoke[@]}" --frames false --out run
 expect 0 "results in run" "$e3" "${smoke[@]}" --frames false --out run --replace true

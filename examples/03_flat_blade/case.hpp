@@ -26,6 +26,11 @@ struct Case {
   double dilatancy_angle_deg = 2.0;  // the paper also runs 10 and 26
   double cohesion = 0.0;             // Pa
   double wall_friction_deg = 14.0;   // corn on steel
+  // The rig floor under the soil: "fixed" (the paper's: no velocity at the floor nodes) or
+  // "friction" (a Coulomb wall, no penetration, friction angle floor_friction_deg), on which
+  // the blade scrapes the floor clean.
+  std::string floor = "fixed";
+  double floor_friction_deg = 14.0;  // steel floor: the blade's corn-on-steel value
   // Cosserat (Table 1): Gc = 2 G, l = 10 mm, J = 0.5 (0.5 l)^2.
   bool polar = false;
   double cosserat_shear_ratio = 2.0;    // Gc / G
@@ -62,6 +67,10 @@ struct Case {
   double damping = 0.0;              // local damping while cutting
   double flip_fraction = 1.0;
   double cfl = 0.5;
+  // Contact also corrects the start-of-step velocity (Nairn, Hammerquist and Smith 2020).
+  bool start_of_step_contact = false;
+  // Contact only where the material would reach the blade within the step (gap check).
+  bool gap_check = false;
   std::string stray_particles = "stop";  // a particle leaving the rig stops the run
   // Output.
   double frame_interval = 0.005;  // m of blade travel between ParaView frames
@@ -96,6 +105,9 @@ struct Case {
     if (integrator != "musl") name << "_" << integrator;
     if (transfer != "flip-blend") name << "_" << transfer;
     if (antilocking != "none") name << "_" << antilocking;
+    if (floor == "friction") name << "_floor" << floor_friction_deg;
+    if (start_of_step_contact) name << "_startcontact";
+    if (gap_check) name << "_gapcheck";
     return name.str();
   }
 };
@@ -163,7 +175,16 @@ inline void declare_options(Options& o, Case& c) {
   o.real("rig-width", c.rig_width, positive, "m",
          "width between the glass panels, for forces in N");
   o.real("gravity", c.gravity, {0.0, 1000.0, Bounds::right_closed}, "m/s^2", "gravity g");
+  o.choice("floor", c.floor, {"fixed", "friction"},
+           "rig floor under the soil: fixed (the paper's: no velocity at the floor nodes) or "
+           "friction (a Coulomb wall at --floor-friction, on which the blade scrapes it clean)");
+  o.real("floor-friction", c.floor_friction_deg, {0.0, 90.0, Bounds::left_closed}, "deg",
+         "friction angle of the floor with --floor friction (steel: the blade's 14)");
   o.group("Numerics");
+  o.flag("start-of-step-contact", c.start_of_step_contact,
+         "contact also corrects the start-of-step velocity (Nairn, Hammerquist and Smith 2020)");
+  o.flag("gap-check", c.gap_check,
+         "contact only where the material would reach the blade within the step");
   o.custom(
       "mesh", "NXxNY", "cells along x and y, e.g. 120x70 (sets --cells-x and --cells-y)",
       "whole numbers in [4, 100000]",
@@ -310,6 +331,9 @@ inline void validate(const Options& o, Case& c) {
     o.fail("profile-at", "lies beyond " + o.describe("travel") +
                              "; lower --profile-at with --travel (e.g. to " +
                              cosmpm::io::detail::format_number_exact(c.travel) + ")");
+  }
+  if (c.floor != "friction" && o.changed("floor-friction")) {
+    o.fail("floor-friction", "applies to --floor friction only; add it or leave this out");
   }
   if (c.replace && c.restart) o.fail("restart", "and --replace true exclude each other");
 }

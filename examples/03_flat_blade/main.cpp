@@ -124,6 +124,11 @@ int main(int argc, char** argv) {
                                                  : "nonpolar (Mohr-Coulomb)",
                 c.soil_depth * 1000, c.cells_x, c.cells_y, c.dilatancy_angle_deg,
                 c.wall_friction_deg);
+    if (c.floor == "friction") {
+      std::printf("  rig floor: Coulomb friction, %g deg\n", c.floor_friction_deg);
+    }
+    if (c.start_of_step_contact) std::printf("  contact corrects the start-of-step velocity\n");
+    if (c.gap_check) std::printf("  contact checks the gap between blade and particles\n");
     if (c.shape != "linear" || c.integrator != "musl" || c.transfer != "flip-blend" ||
         c.antilocking != "none") {
       std::printf("  shape functions %s, integrator %s, transfer %s, anti-locking %s\n",

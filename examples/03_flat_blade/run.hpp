@@ -6,6 +6,7 @@
 #include <cmath>
 #include <cstdio>
 #include <filesystem>
+#include <numbers>
 #include <optional>
 #include <string>
 #include <type_traits>
@@ -149,6 +150,8 @@ Outcome run(const Case& c, RunContext& context,
   blade.set_velocity(contact::RigidBody<2>::VelocityLaw(
       [start_time, speed](double t) { return Vec<2>(t < start_time ? 0.0 : speed, 0.0); }));
   contact::RigidContact<2> blade_contact;
+  blade_contact.set_start_of_step_correction(c.start_of_step_contact);
+  blade_contact.set_gap_check(c.gap_check);
   blade_contact.add_body(std::move(blade),
                          contact::Interface::coulomb_angle(c.wall_friction_deg)
                              .with_rotation_held(polar && c.blade_rotation_fixed));
@@ -200,7 +203,12 @@ Outcome run(const Case& c, RunContext& context,
   }
   using BC = grid::BoundaryConditions<2>;
   auto& bc = sim.boundary_conditions();
-  bc.set(BC::face(1, false), grid::BoundaryKind::fixed);  // rig floor
+  if (c.floor == "friction") {
+    bc.set(BC::face(1, false), grid::BoundaryKind::friction,
+           std::tan(c.floor_friction_deg * std::numbers::pi / 180.0));
+  } else {
+    bc.set(BC::face(1, false), grid::BoundaryKind::fixed);  // rig floor, the paper's
+  }
   bc.set(BC::face(0, false), grid::BoundaryKind::roller);
   bc.set(BC::face(0, true), grid::BoundaryKind::roller);
 

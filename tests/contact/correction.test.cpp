@@ -27,8 +27,16 @@ struct OneNode {
     // Material above the node, so the mass grows upwards (away from the floor).
     mass[static_cast<std::size_t>(grid.node_index({2, 3}))] = 4.0;
   }
+  // Particles for the gap check (none unless a test adds them).
+  std::vector<Vec<2>> particles;
+  std::vector<Vec<2>> half_widths;
+
   contact::GridView<2> view() {
-    return {grid, mass, velocity, 1e-12, 0.1, 0.0, contact::Phase::end_velocity, spin, 1.0};
+    contact::GridView<2> v{grid, mass, velocity, 1e-12, 0.1, 0.0, contact::Phase::end_velocity,
+                           spin, 1.0};
+    v.particle_positions = particles;
+    v.particle_half_widths = half_widths;
+    return v;
   }
   Vec<2> correct(const Vec<2>& trial) {
     velocity[static_cast<std::size_t>(node)] = trial;
@@ -130,4 +138,42 @@ TEST_CASE("correction: node reach per kernel") {
   CHECK(contact::node_reach<shape::GIMP>() == 1.0);
   CHECK(contact::node_reach<shape::QuadraticBSpline>() == 1.5);
   CHECK(contact::node_reach<shape::CubicBSpline>() == 2.0);
+}
+
+TEST_CASE("correction: the gap check corrects only material that reaches the body in the step") {
+  // One particle a quarter cell wide (half-width 0.25 cells of 1 m) centred 0.75 m above the
+  // floor's face: its gap is 0.75 - 0.25 = 0.5 m. dt = 0.1 s.
+  OneNode one(contact::Interface::coulomb(2.0), Vec<2>::Zero());
+  one.law.set_gap_check(true);
+  CHECK(one.law.checks_gap());
+  one.particles = {Vec<2>(0.25, 0.75)};
+  one.half_widths = {Vec<2>(0.25, 0.25)};
+  // v_n = -1 m/s closes 0.1 m of the 0.5 m gap: no contact, the velocity stays.
+  CHECK(one.correct(Vec<2>(0.5, -1.0)).isApprox(Vec<2>(0.5, -1.0)));
+  CHECK(one.law.contact_nodes()[0].state == contact::NodeState::separating);
+  CHECK(one.law.force_on_material(0).isZero());
+  // v_n = -6 m/s closes 0.6 m: it reaches the floor, stick (|v_t| = 0.5 <= 2 * 6).
+  CHECK(one.correct(Vec<2>(0.5, -6.0)).isZero());
+  CHECK(one.law.contact_nodes()[0].state == contact::NodeState::stick);
+  // With a tolerance of 0.45 cells the slow approach counts (0.4 <= 0.45).
+  one.law.set_gap_check(true, 0.45);
+  CHECK(one.correct(Vec<2>(0.5, -1.0)).isZero());
+  // A particle touching the face (gap 0) makes the node a contact node at any approach speed.
+  one.law.set_gap_check(true);
+  one.particles.push_back(Vec<2>(-0.25, 0.25));
+  one.half_widths.push_back(Vec<2>(0.25, 0.25));
+  CHECK(one.correct(Vec<2>(1e-3, -1e-3)).isZero());
+  // Without the check the first particle alone is corrected at once: the support reaches it.
+  OneNode plain(contact::Interface::coulomb(2.0), Vec<2>::Zero());
+  plain.particles = {Vec<2>(0.25, 0.75)};
+  plain.half_widths = {Vec<2>(0.25, 0.25)};
+  CHECK(plain.correct(Vec<2>(0.5, -1.0)).isZero());
+}
+
+TEST_CASE("correction: the gap check refuses a view without particles and a bad tolerance") {
+  OneNode one(contact::Interface::coulomb(0.5), Vec<2>::Zero());
+  one.law.set_gap_check(true);
+  CHECK_THROWS_AS(one.correct(Vec<2>(0.0, -1.0)), Error);
+  CHECK_THROWS_AS(one.law.set_gap_check(true, -0.1), Error);
+  CHECK_THROWS_AS(one.law.set_gap_check(true, 1.5), Error);
 }

@@ -12,6 +12,11 @@
 //                                after the boundary conditions of each velocity phase: the
 //                                final velocities, read only, for a law that records forces
 //                                to reconcile them with what was applied;
+//   bool corrects_start_of_step() const
+//                                optional: true makes USL and MUSL run correct() on the
+//                                start velocity too (phase start_velocity, as USF always
+//                                does) before the momentum update (Nairn, Hammerquist and
+//                                Smith 2020); without it, false;
 //   advance(dt, time)            at the end of every step: moves what the law owns (bodies);
 //   static name()                a short description (output, checkpoint signatures).
 //
@@ -49,6 +54,18 @@ concept AddsForces = requires(L& law, ForceView<Dim>& view) {
 
 template <class L, int Dim>
 concept ContactLaw = NamedLaw<L> && AdvancesInTime<L> && std::movable<L>;
+
+// Whether the law asks for the start-of-step correction in USL and MUSL (see above).
+template <class L>
+bool corrects_start_of_step(const L& law) {
+  if constexpr (requires {
+                  { law.corrects_start_of_step() } -> std::convertible_to<bool>;
+                }) {
+    return law.corrects_start_of_step();
+  } else {
+    return false;
+  }
+}
 
 template <class L, int Dim>
 consteval bool check_contact_law() {

@@ -36,6 +36,11 @@ struct GridView {
   // After the boundary conditions (conditions_applied): per node, bit d set where a face
   // condition imposed velocity component d; empty in the correction itself.
   std::span<const unsigned char> imposed = {};
+  // The particles where the field was mapped from (the engine's positions at the start of the
+  // step; MUSL's remapped phase: at its end) and their half-widths in cell units, for laws
+  // that look at the material's own geometry (RigidContact's gap check).
+  std::span<const Vec<Dim>> particle_positions = {};
+  std::span<const Vec<Dim>> particle_half_widths = {};
 };
 
 // The force phase, before the momentum update: a law adds its contact forces (penalty laws)

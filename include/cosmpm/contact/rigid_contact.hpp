@@ -28,6 +28,7 @@
 #include <vector>
 
 #include "cosmpm/contact/concept.hpp"
+#include "cosmpm/contact/detail/gaps.hpp"
 #include "cosmpm/contact/grid_view.hpp"
 #include "cosmpm/contact/interface.hpp"
 #include "cosmpm/contact/rigid_body.hpp"
@@ -53,6 +54,33 @@ class RigidContact {
     bodies_.push_back({std::move(body), interface, Vec<Dim>::Zero()});
     return static_cast<int>(bodies_.size()) - 1;
   }
+
+  // Nairn, Hammerquist and Smith (2020) correct the start-of-step velocity as well as the
+  // updated one: the trial velocity then starts from a field that does not penetrate, and
+  // the recorded impulse is the step's contact force alone, without the re-correction of a
+  // penetrating velocity the particles carried in. Off by default (the paper's algorithm,
+  // Bardenhagen et al. 2000, corrects the updated velocity only).
+  RigidContact& set_start_of_step_correction(bool on) {
+    start_of_step_correction_ = on;
+    return *this;
+  }
+  bool corrects_start_of_step() const { return start_of_step_correction_; }
+
+  // Gap check (a displacement check beside the approach check, after Nairn, Hammerquist and
+  // Smith 2020): a node approaching the body is corrected only if the material on it would
+  // reach the body within the step, min_p (d_p - e_p) + dt v_n <= tolerance * cell, with d_p
+  // the signed distance of a particle in the node's support from the body, e_p its half
+  // extent along the body's normal (half-width in cell units times the cell size) and v_n
+  // the node's approach velocity. Without it a body's support reaches material up to
+  // node_reach cells away, which makes a thin blade push up to a cell thick. Off by default.
+  RigidContact& set_gap_check(bool on, double tolerance_cells = 0.0) {
+    require_in_range("contact::RigidContact::set_gap_check", "tolerance_cells", tolerance_cells,
+                     0.0, 1.0, Bounds::closed);
+    gap_check_ = on;
+    gap_tolerance_cells_ = tolerance_cells;
+    return *this;
+  }
+  bool checks_gap() const { return gap_check_; }
 
   int body_count() const { return static_cast<int>(bodies_.size()); }
   const RigidBody<Dim>& body(int b) const { return entry(b).body; }
@@ -245,11 +273,22 @@ class RigidContact {
     return best;
   }
 
+  void measure_gaps(const GridView<Dim>& view, const RigidBody<Dim>& body, int b) {
+    detail::smallest_gaps(view, body, b, gaps_);
+  }
+
+  bool reaches_within_step(Index n, double v_n, double dt, const grid::Grid<Dim>& g) const {
+    if (!gap_check_) return true;
+    const double tolerance = gap_tolerance_cells_ * g.cell_size().minCoeff();
+    return gaps_[static_cast<std::size_t>(n)] + dt * v_n <= tolerance;
+  }
+
   void correct_body(GridView<Dim>& view, int b, bool record) {
     Entry& e = bodies_[static_cast<std::size_t>(b)];
     const RigidBody<Dim>& body = e.body;
     const auto& g = view.grid;
     require_on_grid(g, body, b);
+    if (gap_check_) measure_gaps(view, body, b);
     const double mid = view.time + 0.5 * view.dt;
     const Vec<Dim> body_velocity = body.velocity(mid);
     const double body_omega = body.angular_velocity(mid);
@@ -281,7 +320,7 @@ class RigidContact {
         if (e.interface.kind == Interface::Kind::no_slip) {
           v_new = v_body;
           state = NodeState::bonded;
-        } else if (v_n < 0.0) {
+        } else if (v_n < 0.0 && reaches_within_step(n, v_n, view.dt, g)) {
           const Vec<Dim> v_t = v_rel - v_n * p.normal;
           const double v_t_norm = v_t.norm();
           const double limit = mu * (-v_n);
@@ -320,6 +359,10 @@ class RigidContact {
   std::vector<Entry> bodies_;
   std::vector<ContactNode<Dim>> records_;
   bool recorded_ = false;
+  bool start_of_step_correction_ = false;
+  bool gap_check_ = false;
+  double gap_tolerance_cells_ = 0.0;
+  std::vector<double> gaps_;  // per node, of the body being corrected
   Vec<Dim> cell_size_ = Vec<Dim>::Ones();
   Vec<Dim> origin_ = Vec<Dim>::Zero();
 };

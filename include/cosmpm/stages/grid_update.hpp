@@ -12,6 +12,7 @@
 #include "cosmpm/core/parallel.hpp"
 #include "cosmpm/core/types.hpp"
 #include "cosmpm/grid/boundary.hpp"
+#include "cosmpm/particles/fields.hpp"
 
 namespace cosmpm::stages {
 
@@ -21,15 +22,19 @@ template <class State>
 contact::GridView<State::dim> contact_view(State& s, std::vector<Vec<State::dim>>& velocity,
                                            std::vector<double>& spin, double dt,
                                            contact::Phase phase) {
-  return {s.grid,
-          s.nodes.mass,
-          velocity,
-          s.empty_node_mass(),
-          dt,
-          s.clock.time,
-          phase,
-          std::span<double>(spin),
-          contact::node_reach<typename State::kernel_type>()};
+  constexpr int Dim = State::dim;
+  contact::GridView<Dim> view{s.grid,
+                              s.nodes.mass,
+                              velocity,
+                              s.empty_node_mass(),
+                              dt,
+                              s.clock.time,
+                              phase,
+                              std::span<double>(spin),
+                              contact::node_reach<typename State::kernel_type>()};
+  view.particle_positions = s.particles.template get<particles::field::Position<Dim>>();
+  view.particle_half_widths = s.particles.template get<particles::field::HalfWidth<Dim>>();
+  return view;
 }
 
 // The grid's face conditions on a velocity field and the continuum's on its rotational rates.
@@ -114,17 +119,11 @@ void update_grid(State& s, double dt) {
     const double sign = rate > 0.0 ? 1.0 : (rate < 0.0 ? -1.0 : 0.0);
     return force - damping * std::abs(force) * sign;
   };
-  COSMPM_OMP_PARALLEL_FOR(s.threads, count, 512)
-  for (Index n = 0; n < count; ++n) {
-    const double m = nodes.mass[n];
-    if (m <= empty) {
-      nodes.momentum[n].setZero();
-      nodes.velocity[n].setZero();
-      for (int k = 0; k < R; ++k) nodes.spin_momentum[n * R + k] = nodes.spin[n * R + k] = 0.0;
-      continue;
-    }
-    const double inverse_mass = 1.0 / m;  // one division per node instead of 2 Dim
-    const Vec<Dim> v_start = nodes.momentum[n] * inverse_mass;
+  // The momentum update of node n from its start velocity v_start (its start spin in
+  // spin_momentum, as a rate when spin_is_rate, else as a moment of momentum):
+  // nodes.momentum becomes v_start, nodes.velocity the trial end velocity.
+  const auto update_node = [&](Index n, const Vec<Dim>& v_start, bool spin_is_rate) {
+    const double inverse_mass = 1.0 / nodes.mass[n];  // one division per node instead of 2 Dim
     Vec<Dim> force = nodes.force[n];
     if (damping > 0.0) {
       for (int d = 0; d < Dim; ++d) force[d] = damped(force[d], v_start[d]);
@@ -134,15 +133,45 @@ void update_grid(State& s, double dt) {
     for (int k = 0; k < R; ++k) {
       const std::size_t i = static_cast<std::size_t>(n * R + k);
       const double inertia = nodes.rotational_inertia[i];
-      const double spin_start = nodes.spin_momentum[i] / inertia;
+      const double spin_start =
+          spin_is_rate ? nodes.spin_momentum[i] : nodes.spin_momentum[i] / inertia;
       double moment = nodes.moment[i];
       if (damping > 0.0) moment = damped(moment, spin_start);
       nodes.spin_momentum[i] = spin_start;
       nodes.spin[i] = spin_start + dt * moment / inertia;
     }
+  };
+  const auto clear_empty_node = [&](Index n) {
+    nodes.momentum[n].setZero();
+    nodes.velocity[n].setZero();
+    for (int k = 0; k < R; ++k) nodes.spin_momentum[n * R + k] = nodes.spin[n * R + k] = 0.0;
+  };
+  if (contact::corrects_start_of_step(s.contact)) {
+    // Nairn, Hammerquist and Smith (2020): contact corrects the start velocity as well, so
+    // the trial velocity, and the impulse recorded at the end, start from a field that does
+    // not penetrate. The correction is not an acceleration: FLIP particles do not receive it.
+    grid_velocity_from_momentum(s, dt);
+    COSMPM_OMP_PARALLEL_FOR(s.threads, count, 512)
+    for (Index n = 0; n < count; ++n) {
+      if (nodes.mass[n] <= empty) {
+        clear_empty_node(n);
+        continue;
+      }
+      update_node(n, Vec<Dim>(nodes.momentum[n]), /*spin_is_rate=*/true);
+    }
+  } else {
+    COSMPM_OMP_PARALLEL_FOR(s.threads, count, 512)
+    for (Index n = 0; n < count; ++n) {
+      const double m = nodes.mass[n];
+      if (m <= empty) {
+        clear_empty_node(n);
+        continue;
+      }
+      update_node(n, Vec<Dim>(nodes.momentum[n] * (1.0 / m)), /*spin_is_rate=*/false);
+    }
   }
-  // Contact acts on the updated velocity only, so the acceleration (and through FLIP the
-  // particles) carries its impulse; boundary conditions come last and win.
+  // Contact corrects the updated velocity, so the acceleration (and through FLIP the
+  // particles) carries the step's impulse; boundary conditions come last and win.
   apply_conditions(s, nodes.momentum, nodes.spin_momentum);
   correct_and_apply_conditions(s, nodes.velocity, nodes.spin, dt, contact::Phase::end_velocity);
   // The grid-to-particle pass reads each node's velocity and acceleration as one record.
