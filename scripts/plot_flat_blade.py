@@ -102,6 +102,38 @@ def plot_blade_stress(runs, output):
     plt.close(fig)
 
 
+def read_frame(path):
+    """The fields of one frame the plots use, from frame format version 2 (cosmpm >= 0.1.0:
+    /particles/..., N x 3 vectors, N x 9 tensors) or 1 (fields at the root, N x 2 vectors,
+    strain [xx, yy, zz, xy(, yx, ...)]): time, position (N x 2), strain_xx, strain_yy,
+    strain_xy (the symmetric part of the shear), plastic and micro_rotation (or None)."""
+    import h5py
+
+    with h5py.File(path, "r") as h5:
+        version = int(h5.attrs.get("version", 1))
+        if version == 2:
+            group = h5["particles"]
+            strain = group["strain"][()]
+            frame = {"position": group["position"][()][:, :2],
+                     "strain_xx": strain[:, 0], "strain_yy": strain[:, 4],
+                     "strain_xy": 0.5 * (strain[:, 1] + strain[:, 3])}
+        elif version == 1:
+            group = h5
+            strain = group["strain"][()]
+            shear = strain[:, 3] if strain.shape[1] == 4 else 0.5 * (strain[:, 3] + strain[:, 4])
+            frame = {"position": group["position"][()],
+                     "strain_xx": strain[:, 0], "strain_yy": strain[:, 1], "strain_xy": shear}
+        else:
+            raise SystemExit("%s: frame format version %d is newer than this script reads (1, 2)"
+                             % (path, version))
+        count = len(frame["position"])
+        frame["time"] = float(h5.attrs["time"])
+        frame["plastic"] = group["plastic"][()] if "plastic" in group else np.zeros(count)
+        frame["micro_rotation"] = (group["micro_rotation"][()] if "micro_rotation" in group
+                                   else None)
+    return frame
+
+
 def nearest_frame(frames, start, speed, travel):
     """The frame whose blade travel (m since cutting started) is nearest `travel`, and its travel."""
     import h5py
@@ -116,26 +148,22 @@ def nearest_frame(frames, start, speed, travel):
 
 
 def plot_fields(run, output):
-    import h5py
-
     frames = sorted((run / "frames").glob("flat_blade_*.h5"))
     if len(frames) < 2:
         return
     summary = read_csv(run / "summary.csv")
     start, speed = summary["cutting_start_s"][0], summary["blade_speed_m_per_s"][0]
     target = 0.015
-    with h5py.File(frames[0], "r") as h5:
-        strain0 = h5["strain"][()]
-        position0 = h5["position"][()]
+    first = read_frame(frames[0])
+    position0 = first["position"]
     best, best_travel = nearest_frame(frames, start, speed, target)
-    with h5py.File(best, "r") as h5:
-        x = h5["position"][()]
-        strain = h5["strain"][()] - strain0
-        plastic = h5["plastic"][()] if "plastic" in h5 else np.zeros(len(x))
-        rotation = h5["micro_rotation"][()] if "micro_rotation" in h5 else None
-    exx, eyy, exy = strain[:, 0], strain[:, 1], strain[:, 3]
-    if strain.shape[1] == 7:  # Cosserat: the symmetric part of the shear
-        exy = 0.5 * (strain[:, 3] + strain[:, 4])
+    frame = read_frame(best)
+    x = frame["position"]
+    plastic, rotation = frame["plastic"], frame["micro_rotation"]
+    # Strain since the blade started (the first frame is at its start).
+    exx = frame["strain_xx"] - first["strain_xx"]
+    eyy = frame["strain_yy"] - first["strain_yy"]
+    exy = frame["strain_xy"] - first["strain_xy"]
     j2 = ((exx - eyy) ** 2 + eyy ** 2 + exx ** 2) / 6.0 + exy ** 2  # the paper's J'
     pdr = np.linalg.norm(x - position0, axis=1) / max(best_travel, 1e-12)
     face = summary["blade_face_x_m"][0] + best_travel

@@ -15,10 +15,9 @@ import csv
 import math
 import pathlib
 
-import h5py
 import numpy as np
 
-from plot_flat_blade import nearest_frame  # same folder
+from plot_flat_blade import nearest_frame, read_frame  # same folder
 
 
 def summary_of(run):
@@ -35,17 +34,17 @@ def frame_at(run, start, speed, travel):
 def measure(run, travel):
     s = summary_of(run)
     first, path, at = frame_at(run, s["cutting_start_s"], s["blade_speed_m_per_s"], travel)
-    with h5py.File(first, "r") as h5:
-        strain0 = h5["strain"][()]
-    with h5py.File(path, "r") as h5:
-        x = h5["position"][()]
-        if "micro_rotation" in h5:
-            indicator = np.abs(h5["micro_rotation"][()])
-            name = "|rotation|"
-        else:
-            e = h5["strain"][()] - strain0
-            indicator = ((e[:, 0] - e[:, 1]) ** 2 + e[:, 1] ** 2 + e[:, 0] ** 2) / 6 + e[:, 3] ** 2
-            name = "J'"
+    start, frame = read_frame(first), read_frame(path)
+    x = frame["position"]
+    if frame["micro_rotation"] is not None:
+        indicator = np.abs(frame["micro_rotation"])
+        name = "|rotation|"
+    else:
+        exx = frame["strain_xx"] - start["strain_xx"]
+        eyy = frame["strain_yy"] - start["strain_yy"]
+        exy = frame["strain_xy"] - start["strain_xy"]
+        indicator = ((exx - eyy) ** 2 + eyy ** 2 + exx ** 2) / 6 + exy ** 2
+        name = "J'"
     depth = s["depth_m"]
     face = s["blade_face_x_m"] + at
     rows = []

@@ -1,7 +1,10 @@
 #!/usr/bin/env bash
 # Sets up, builds and runs every check: clang-format, a Release build of tests, examples,
-# benchmarks and the header check, an ASan+UBSan test build, and the consumer project built
-# against the installed package and through add_subdirectory.
+# benchmarks and the header check (ctest includes the examples' bad-input and restart
+# checks), short example runs opened in both ParaView XDMF readers, an ASan+UBSan test build
+# with a longer fuzz of the option parsers, and the consumer project built against the
+# installed package (with and without HDF5, compiling docs/usage.md's examples) and through
+# add_subdirectory.
 set -euo pipefail
 root=$(cd "$(dirname "$0")/.." && pwd)
 cd "$root"
@@ -30,15 +33,25 @@ cmake -S . -B build/portable -G Ninja -DCMAKE_BUILD_TYPE=Release -DCMAKE_CXX_FLA
 cmake --build build/portable -j "$jobs"
 ctest --test-dir build/portable -j "$jobs" --output-on-failure -E "compile-fail"
 
-echo "== examples (short runs)" >&2
+echo "== examples (short runs), ParaView's readers, the coloured-layer view" >&2
 smoke=$(mktemp -d)
-./build/release/examples/example_01_elastic_column 16 "$smoke/01"
+./build/release/examples/example_01_elastic_column --cells 16 --out "$smoke/01"
 ./build/release/examples/example_02_earth_pressure --out "$smoke/02"
-./build/release/examples/example_03_flat_blade --mesh 40x24 --travel 0.002 --equilibrium-time 0.02 \
-  --average-from 0 --average-to 0.002 --profile-at 0.002 --frame-interval 0.001 --out "$smoke/03"
+./build/release/examples/example_03_flat_blade --case examples/03_flat_blade/cases/smoke.case \
+  --out "$smoke/03"
 /usr/bin/python3 scripts/plot_flat_blade.py "$smoke/03"
-./build/release/examples/example_03_flat_blade --polar true --mesh 40x24 --travel 0.001 \
-  --equilibrium-time 0.005 --average-from 0 --average-to 0.001 --profile-at 0.001 --out "$smoke/03p"
+./build/release/examples/example_03_flat_blade --case examples/03_flat_blade/cases/smoke.case \
+  --polar true --travel 0.001 --equilibrium-time 0.005 --average-to 0.001 --profile-at 0.0009 \
+  --frame-interval 0.0005 --out "$smoke/03p"
+for case_file in examples/03_flat_blade/cases/*.case; do
+  ./build/release/examples/example_03_flat_blade --case "$case_file" --check true >/dev/null
+done
+# Both ParaView XDMF readers read every array and cell of a nonpolar and a polar frame.
+scripts/check_paraview.sh "$smoke/paraview" "$smoke/03/frames/flat_blade.xdmf" \
+  "$smoke/03/frames/flat_blade_bodies.xdmf" "$smoke/03p/frames/flat_blade.xdmf"
+xvfb-run -a -s "-screen 0 1280x1024x24" pvbatch --force-offscreen-rendering \
+  scripts/paraview_layers.py "$smoke/03" --output "$smoke/layers.png" 2>&1 | grep '^paraview_layers' \
+  || echo "paraview_layers: the X server connection failed (see scripts/check_paraview.sh); not an error of ours" >&2
 ./build/release/examples/example_03_flat_blade --method dem --depth 0.06 --rig-length 0.3 --rain-height 0.1 \
   --travel 0.003 --average-from 0 --average-to 0.003 --stress-from 0 --stress-to 0.003 --pdr-at 0.003 \
   --frame-interval 0.003 --out "$smoke/03dem"
@@ -59,17 +72,30 @@ cmake -S . -B build/sanitize -G Ninja -DCMAKE_BUILD_TYPE=None -DCMAKE_CXX_FLAGS=
 cmake --build build/sanitize -j "$jobs"
 ASAN_OPTIONS=detect_leaks=1 UBSAN_OPTIONS=print_stacktrace=1:halt_on_error=1 \
   ctest --test-dir build/sanitize -j "$jobs" --output-on-failure
+# The option parsers fuzzed for longer than in ctest, under the sanitizers.
+ASAN_OPTIONS=detect_leaks=1 UBSAN_OPTIONS=print_stacktrace=1:halt_on_error=1 \
+  COSMPM_FUZZ_SECONDS=5 ./build/sanitize/tests/cosmpm_test_io --test-case='fuzz*'
 
-echo "== consumer project: find_package and add_subdirectory" >&2
+echo "== consumer project: find_package (with and without HDF5), add_subdirectory, docs/usage.md" >&2
 rm -rf build/install
 cmake --install build/release >/dev/null
 cmake -S tests/consumer -B build/consumer-installed -G Ninja -DCMAKE_BUILD_TYPE=Release \
   -DCOSMPM_CONSUMER_MODE=find_package -DCMAKE_PREFIX_PATH="$root/build/install" >/dev/null
 cmake --build build/consumer-installed -j "$jobs"
 ./build/consumer-installed/cosmpm_consumer
+./build/consumer-installed/cosmpm_consumer_io
+for usage in build/consumer-installed/cosmpm_usage_*; do "$usage" >/dev/null; done
+# The core needs no HDF5: configured with find_package(HDF5) disabled.
+cmake -S tests/consumer -B build/consumer-core -G Ninja -DCMAKE_BUILD_TYPE=Release \
+  -DCOSMPM_CONSUMER_MODE=find_package -DCOSMPM_CONSUMER_CORE_ONLY=ON \
+  -DCMAKE_DISABLE_FIND_PACKAGE_HDF5=ON -DCMAKE_PREFIX_PATH="$root/build/install" >/dev/null
+cmake --build build/consumer-core -j "$jobs"
+./build/consumer-core/cosmpm_consumer
 cmake -S tests/consumer -B build/consumer-subdirectory -G Ninja -DCMAKE_BUILD_TYPE=Release \
-  -DCOSMPM_CONSUMER_MODE=add_subdirectory -DCOSMPM_SOURCE_DIR="$root" >/dev/null
+  -DCOSMPM_CONSUMER_MODE=add_subdirectory -DCOSMPM_SOURCE_DIR="$root" \
+  -DCOSMPM_CONSUMER_USAGE=OFF >/dev/null
 cmake --build build/consumer-subdirectory -j "$jobs"
 ./build/consumer-subdirectory/cosmpm_consumer
+./build/consumer-subdirectory/cosmpm_consumer_io
 
 echo "== all checks passed" >&2

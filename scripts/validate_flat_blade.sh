@@ -34,6 +34,11 @@ if [ "$which" = dem ]; then
     --out out/flat_blade_dem/depths.png
   exit 0
 fi
+# A rerun replaces the earlier results of the same cases (unless told otherwise).
+extra=(--replace true)
+for arg in "$@"; do
+  case "$arg" in --replace* | --restart* | --out*) extra=() ;; esac
+done
 modes=()
 case "$which" in
   nonpolar) modes=(false) ;;
@@ -45,7 +50,7 @@ for polar in "${modes[@]}"; do
   for mesh in 120x70 80x50; do
     for depth in 0.15 0.25 0.35; do
       /usr/bin/time -f "%e s wall" ./build/release/examples/example_03_flat_blade \
-        --polar "$polar" --mesh "$mesh" --depth "$depth" --threads 1 "$@"
+        --polar "$polar" --mesh "$mesh" --depth "$depth" --threads 1 "${extra[@]}" "$@"
     done
   done
 done

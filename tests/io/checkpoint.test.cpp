@@ -22,6 +22,7 @@
 #include "cosmpm/shape/linear.hpp"
 #include "cosmpm/shape/quadratic_bspline.hpp"
 #include "cosmpm/simulation.hpp"
+#include "cosmpm/transfer/apic.hpp"
 #include "helpers.hpp"
 
 namespace {
@@ -52,6 +53,8 @@ struct TrackingElastic {
 template <class Kernel = shape::Linear, class Scheme = integrator::USL>
 using Sim =
     Simulation<2, Kernel, continuum::Classical<TrackingElastic>, contact::SingleField, Scheme>;
+using ApicSim = Simulation<2, shape::QuadraticBSpline, continuum::Classical<TrackingElastic>,
+                           contact::SingleField, integrator::MUSL, transfer::APIC>;
 
 const grid::Grid<2> block_grid(Vec<2>(0.0, 0.0), Vec<2>(1.0, 1.0), {10, 10});
 
@@ -71,7 +74,8 @@ template <class S>
 S make_sim(const grid::Grid<2>& grid = block_grid, int threads = 0) {
   SimulationParameters<2> parameters;
   parameters.threads = threads;
-  parameters.flip_fraction = 0.95;  // a PIC share, so both velocity paths are exercised
+  // A PIC share, so both velocity paths are exercised (APIC has no FLIP part).
+  parameters.flip_fraction = S::transfer_type::affine ? 1.0 : 0.95;
   parameters.gravity = Vec<2>(0.0, -9.81);
   parameters.time_step = 1e-4;  // below the stable step h / c = 0.1 / 37 m/s = 2.7e-3 s
   S sim(grid, TrackingElastic{}, parameters);
@@ -160,6 +164,58 @@ TEST_CASE("a run restarted from a checkpoint continues bit-identically") {
   SUBCASE("USL restarted on one thread") {
     check_restart<Sim<>>("usl_one_thread", 1);
   }
+  // APIC adds the affine moment to the particles.
+  SUBCASE("MUSL with APIC") {
+    check_restart<ApicSim>("apic", 0);
+  }
+}
+
+namespace {
+// The block of make_sim and a lone particle shot up through the open top (y = 1), so it
+// leaves the grid after about 100 steps.
+Sim<> shot_block(StrayParticles policy) {
+  SimulationParameters<2> parameters;
+  parameters.flip_fraction = 0.95;
+  parameters.gravity = Vec<2>(0.0, -9.81);
+  parameters.time_step = 1e-4;
+  parameters.stray_particles = policy;
+  Sim<> sim(block_grid, TrackingElastic{}, parameters);
+  set_up(sim);
+  const auto seeding = particles::seed_box(block_grid, Vec<2>(0.2, 0.0), Vec<2>(0.6, 0.5), 2);
+  const Index shot =
+      sim.add_particles({Vec<2>(0.06, 0.95)}, seeding.volume, 1000.0, seeding.half_width);
+  sim.particles().get<field::Velocity<2>>()[shot] = Vec<2>(0.0, 5.0);
+  return sim;
+}
+}  // namespace
+
+TEST_CASE("a run that lost particles off the grid restarts bit-identically") {
+  for (const StrayParticles policy : {StrayParticles::freeze, StrayParticles::remove}) {
+    const bool freeze = policy == StrayParticles::freeze;
+    CAPTURE(freeze);
+    const auto dir = output_dir(freeze ? "strays_frozen" : "strays_removed");
+    const int first = 150, second = 40;
+    auto straight = shot_block(policy);
+    for (int i = 0; i < first + second; ++i) straight.step(1e-4);
+    auto before = shot_block(policy);
+    for (int i = 0; i < first; ++i) before.step(1e-4);
+    REQUIRE(before.stray_particles().count == 1);  // the shot particle left before the save
+    io::save_checkpoint(before, dir / "after_stray.h5");
+
+    auto restarted = shot_block(policy);
+    io::load_checkpoint(restarted, dir / "after_stray.h5");
+    CHECK(restarted.particles().size() == before.particles().size());
+    for (int i = 0; i < second; ++i) restarted.step(1e-4);
+    check_identical(restarted.particles(), straight.particles());
+    check_identical(restarted.frozen_particles(), straight.frozen_particles());
+    CHECK(restarted.frozen_particles().size() == (freeze ? 1 : 0));
+    CHECK(restarted.stray_particles().count == straight.stray_particles().count);
+    CHECK(restarted.stray_particles().mass == straight.stray_particles().mass);
+    // A simulation set up with another particle count is refused, naming both counts.
+    auto other = make_sim<Sim<>>();
+    CHECK(contains(error_of([&] { io::load_checkpoint(other, dir / "after_stray.h5"); }),
+                   "and 1 that left the grid but the simulation has"));
+  }
 }
 
 TEST_CASE("checkpoints keep special doubles and the state bit for bit") {
@@ -216,6 +272,12 @@ TEST_CASE("loading a checkpoint of another composition names the file and the mi
   auto musl = make_sim<Sim<shape::Linear, integrator::MUSL>>();
   const std::string scheme_error = error_of([&] { io::load_checkpoint(musl, path); });
   CHECK(contains(scheme_error, "scheme is 'USL' in the file but 'MUSL'"));
+
+  // The velocity transfer and the anti-locking policy are part of the composition.
+  CHECK(contains(io::composition_signature(sim), "transfer=PIC/FLIP blend"));
+  CHECK(contains(io::composition_signature(sim), "antilocking=none"));
+  auto apic = make_sim<ApicSim>();
+  CHECK(contains(io::composition_signature(apic), "transfer=APIC"));
 
   // Same particle count on a grid shifted by one cell: the geometry differs.
   const grid::Grid<2> shifted(Vec<2>(-0.1, 0.0), Vec<2>(1.1, 1.0), {11, 10});
@@ -322,11 +384,11 @@ TEST_CASE("frames written before a run goes unstable stay readable, grid fields 
   const Index frames = writer.frame_count();
   CHECK(frames >= 1);
   for (Index f = 0; f < frames; ++f) {
-    CHECK(read_raw(writer.frame_path(f), "/position").ok);
+    CHECK(read_raw(writer.frame_path(f), "/particles/position").ok);
     CHECK(read_raw(writer.frame_path(f), "/grid/mass").ok);
   }
   const RawDataset mass = read_raw(writer.frame_path(0), "/grid/mass");
-  const RawDataset nodes = read_raw(writer.frame_path(0), "/grid/position3");
+  const RawDataset nodes = read_raw(writer.frame_path(0), "/grid/position");
   CHECK(mass.dims == std::vector<hsize_t>{121});  // 11 x 11 nodes
   CHECK(nodes.dims == std::vector<hsize_t>{121, 3});
   // Node 12 = (i, j) = (1, 1) sits at (0.1, 0.1): x fastest numbering, exact products.
@@ -339,11 +401,11 @@ TEST_CASE("frames written before a run goes unstable stay readable, grid fields 
   double particle_mass = 0.0;
   for (const double m : sim.particles().get<field::Mass>()) particle_mass += m;
   CHECK(grid_mass == doctest::Approx(particle_mass).epsilon(1e-12));
-  std::ifstream xdmf(writer.xdmf_path());
+  std::ifstream xdmf(writer.grid_xdmf_path());
   std::stringstream text;
   text << xdmf.rdbuf();
   CHECK(contains(text.str(), "Name=\"grid\""));
-  CHECK(contains(text.str(), "run_000000.h5:/grid/velocity3"));
+  CHECK(contains(text.str(), "run_000000.h5:/grid/velocity"));
 }
 
 TEST_CASE("a restarted simulation resumes its frame series, grid meshes included") {
@@ -367,11 +429,11 @@ TEST_CASE("a restarted simulation resumes its frame series, grid meshes included
   CHECK(writer.write(restarted) == dir / "run_000002.h5");
   // The redone step reaches the state the frame was first written from, bit for bit.
   check_identical(restarted.particles(), sim.particles());
-  CHECK(read_raw(dir / "run_000002.h5", "/stress").ok);
-  std::ifstream xdmf(writer.xdmf_path());
+  CHECK(read_raw(dir / "run_000002.h5", "/particles/stress").ok);
+  std::ifstream xdmf(writer.grid_xdmf_path());
   std::stringstream text;
   text << xdmf.rdbuf();
-  for (const char* reference : {"run_000000.h5:/grid/position3", "run_000001.h5:/grid/velocity3",
+  for (const char* reference : {"run_000000.h5:/grid/position", "run_000001.h5:/grid/velocity",
                                 "run_000002.h5:/grid/mass"}) {
     CHECK_MESSAGE(contains(text.str(), reference), reference);
   }
@@ -410,4 +472,29 @@ TEST_CASE("a contact law's own state is checkpointed through its hooks") {
   CHECK(restarted.contact().offset == straight.contact().offset);
   check_identical(restarted.particles(), straight.particles());
   CHECK(contains(io::composition_signature(restarted), "contact_state=yes"));
+}
+
+TEST_CASE("a caller's own values travel with the checkpoint bit for bit") {
+  const auto dir = output_dir("caller_values");
+  auto sim = make_sim<Sim<>>();
+  sim.step(1e-4);
+  io::CheckpointValues values;
+  values.set("draft_sum", 0.1 + 0.2);  // 0.30000000000000004: needs every bit
+  values.set("next_frame", -0.0);
+  values.set("averaged_steps", 12345.0);
+  values.set("draft_sum", 0.1 + 0.7);  // set again: replaced, not duplicated
+  io::save_checkpoint(sim, dir / "with_values.h5", values);
+  auto restarted = make_sim<Sim<>>();
+  const io::CheckpointValues loaded = io::load_checkpoint(restarted, dir / "with_values.h5");
+  REQUIRE(loaded.entries().size() == 3);
+  CHECK(std::bit_cast<std::uint64_t>(loaded.get("draft_sum")) ==
+        std::bit_cast<std::uint64_t>(0.1 + 0.7));
+  CHECK(std::signbit(loaded.get("next_frame")));
+  CHECK(loaded.get("averaged_steps") == 12345.0);
+  CHECK(contains(error_of([&] { (void)loaded.get("missing", "restart"); }),
+                 "restart: holds no value 'missing'"));
+  CHECK_THROWS_AS(values.set("two\nlines", 1.0), Error);
+  // A checkpoint without values loads with none.
+  io::save_checkpoint(sim, dir / "without_values.h5");
+  CHECK(io::load_checkpoint(restarted, dir / "without_values.h5").empty());
 }

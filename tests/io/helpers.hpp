@@ -108,4 +108,25 @@ inline double read_root_double(const std::filesystem::path& file, const std::str
   return value;
 }
 
+// A fixed-length string attribute of `object` ("/" or a dataset), read with the plain HDF5 C
+// API; "<missing>" if anything fails.
+inline std::string read_string_attribute(const std::filesystem::path& file,
+                                         const std::string& object, const std::string& name) {
+  std::string value = "<missing>";
+  H5Eset_auto2(H5E_DEFAULT, nullptr, nullptr);
+  const hid_t f = H5Fopen(file.c_str(), H5F_ACC_RDONLY, H5P_DEFAULT);
+  if (f < 0) return value;
+  const hid_t a = H5Aopen_by_name(f, object.c_str(), name.c_str(), H5P_DEFAULT, H5P_DEFAULT);
+  if (a >= 0) {
+    const hid_t type = H5Aget_type(a);
+    const std::size_t size = H5Tget_size(type);
+    std::string text(size, '\0');
+    if (H5Aread(a, type, text.data()) >= 0) value = text.substr(0, text.find('\0'));
+    H5Tclose(type);
+    H5Aclose(a);
+  }
+  H5Fclose(f);
+  return value;
+}
+
 }  // namespace cosmpm::test_io

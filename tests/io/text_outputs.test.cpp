@@ -93,7 +93,7 @@ TEST_CASE("progress line format") {
   CHECK(ProgressReporter::format_duration(-1.0) == "--");
 }
 
-TEST_CASE("progress on a non-terminal prints a plain line every 10 percent and a final one") {
+TEST_CASE("progress on a non-terminal prints a plain line every 10 percent") {
   std::FILE* out = std::tmpfile();
   REQUIRE(out != nullptr);
   using Clock = io::ProgressReporter::Clock;
@@ -109,13 +109,35 @@ TEST_CASE("progress on a non-terminal prints a plain line every 10 percent and a
   std::vector<std::string> lines;
   std::istringstream in(text);
   for (std::string line; std::getline(in, line);) lines.push_back(line);
-  // 10 %, 20 %, ..., 100 % and the final line; no carriage returns.
-  REQUIRE(lines.size() == 11);
+  // 10 %, 20 %, ..., 100 %; the final report repeats the 100 % step, so it prints nothing;
+  // no carriage returns.
+  REQUIRE(lines.size() == 10);
   CHECK(text.find('\r') == std::string::npos);
   CHECK(lines[0].rfind("[run] 10.0% t=0.100/1.000 s step 10 | 1.0e2 particle-steps/s", 0) == 0);
   // At 10 % after 10 s, 90 % remains: ETA 90 s.
   CHECK(lines[0].find("ETA 1:30") != std::string::npos);
-  CHECK(lines[10].rfind("[run] 100.0%", 0) == 0);
+  CHECK(lines[9].rfind("[run] 100.0%", 0) == 0);
+}
+
+TEST_CASE("progress in a log prints the final line once when the last update reached it") {
+  std::FILE* out = std::tmpfile();
+  REQUIRE(out != nullptr);
+  using Clock = io::ProgressReporter::Clock;
+  io::ProgressReporter progress("run", 1.0, 100, out, io::ProgressReporter::Style::plain);
+  const Clock::time_point start{};
+  for (int step = 1; step <= 10; ++step) {
+    progress.report(0.1 * step, step, start + std::chrono::seconds(step), false);
+  }
+  // The update at step 10 printed 100 %; finishing at the same step adds nothing.
+  progress.report(1.0, 10, start + std::chrono::seconds(10), true);
+  const std::string text = file_text(out);
+  std::fclose(out);
+  std::size_t lines = 0;
+  std::size_t full = 0;
+  for (std::size_t at = 0; (at = text.find('\n', at)) != std::string::npos; ++at) ++lines;
+  for (std::size_t at = 0; (at = text.find("100.0%", at)) != std::string::npos; ++at) ++full;
+  CHECK(lines == 10);
+  CHECK(full == 1);
 }
 
 TEST_CASE("progress on a terminal redraws in place at most twice a second") {

@@ -2,7 +2,9 @@
 // Write-then-rename: every output file is written under a temporary name next to its final
 // name and renamed into place only when complete, so a crash never leaves a half-written file
 // under the final name (rename within one directory is atomic on POSIX file systems).
+#include <cerrno>
 #include <cstdio>
+#include <cstring>
 #include <filesystem>
 #include <fstream>
 #include <string>
@@ -47,6 +49,40 @@ inline void sync_file(const std::filesystem::path& path) {
 #endif
 }
 }  // namespace detail
+
+// Writes `size` bytes to `path` (created or truncated) and closes it, checking every call;
+// the Error names the file and the operating system's reason (e.g. "No space left on
+// device"). Without POSIX calls, a checked std::ofstream does the same with a vaguer reason.
+inline void write_bytes(const std::filesystem::path& path, const char* data, std::size_t size) {
+#if COSMPM_IO_HAVE_POSIX
+  const int fd = ::open(path.c_str(), O_WRONLY | O_CREAT | O_TRUNC, 0644);
+  if (fd < 0) {
+    throw Error("io: cannot open '" + path.string() + "' for writing (" + std::strerror(errno) +
+                ")");
+  }
+  std::size_t written = 0;
+  while (written < size) {
+    const auto n = ::write(fd, data + written, size - written);
+    if (n < 0 && errno == EINTR) continue;
+    if (n <= 0) {
+      const std::string reason = n < 0 ? std::strerror(errno) : "nothing written";
+      ::close(fd);
+      throw Error("io: writing '" + path.string() + "' failed after " + std::to_string(written) +
+                  " of " + std::to_string(size) + " bytes (" + reason + ")");
+    }
+    written += static_cast<std::size_t>(n);
+  }
+  if (::close(fd) != 0) {
+    throw Error("io: closing '" + path.string() + "' failed (" + std::strerror(errno) + ")");
+  }
+#else
+  std::ofstream out(path, std::ios::binary | std::ios::trunc);
+  if (!out) throw Error("io: cannot open '" + path.string() + "' for writing");
+  out.write(data, static_cast<std::streamsize>(size));
+  out.close();
+  if (!out) throw Error("io: writing '" + path.string() + "' failed (disk full?)");
+#endif
+}
 
 // The temporary name used while `final_path` is being written: same directory, so the
 // rename stays within one file system; the process id keeps two writers apart.
@@ -104,13 +140,7 @@ class TemporaryFile {
 // Writes `content` to `path` through a temporary file and a rename.
 inline void write_file_atomically(const std::filesystem::path& path, std::string_view content) {
   TemporaryFile file(path);
-  {
-    std::ofstream out(file.path(), std::ios::binary | std::ios::trunc);
-    if (!out) throw Error("io: cannot open '" + file.path().string() + "' for writing");
-    out.write(content.data(), static_cast<std::streamsize>(content.size()));
-    out.flush();
-    if (!out) throw Error("io: writing '" + file.path().string() + "' failed (disk full?)");
-  }
+  write_bytes(file.path(), content.data(), content.size());
   file.commit();
 }
 

@@ -14,7 +14,12 @@
 // Layout: attributes of / : format = "cosmpm-checkpoint", version = 1, composition (string),
 // time (double), step_count (int64), particle_count (int64); /particles/<label>: N values or
 // N x C doubles (row-major), the state as N x sizeof(state) bytes; /contact/values if the
-// contact law has state (checkpoint_values() / restore_checkpoint_values()).
+// contact law has state (checkpoint_values() / restore_checkpoint_values()); /caller/values
+// with the attribute names (one per line) if the caller stored values of its own (a driver's
+// running sums and next output times: CheckpointValues); /engine/values (stray_count,
+// stray_mass, ...) and /frozen/<label> (attribute particle_count) for the particles that left
+// the grid (SimulationParameters::stray_particles), so a restart also continues a run that
+// froze or removed some; checkpoints without them hold none.
 #include <algorithm>
 #include <cstdint>
 #include <cstdio>
@@ -28,15 +33,12 @@
 
 #include "cosmpm/core/error.hpp"
 #include "cosmpm/io/atomic_file.hpp"
-#include "cosmpm/io/hdf5.hpp"
+#include "cosmpm/io/detail/checkpoint_fields.hpp"
+#include "cosmpm/io/detail/checkpoint_signature.hpp"
+#include "cosmpm/io/field_layout.hpp"
+#include "cosmpm/io/hdf5_file.hpp"
+#include "cosmpm/simulation/diagnostics.hpp"
 #include "cosmpm/version.hpp"
-
-#if __has_include(<cxxabi.h>)
-#include <cxxabi.h>
-
-#include <cstdlib>
-#define COSMPM_IO_HAVE_CXXABI 1
-#endif
 
 namespace cosmpm::io {
 
@@ -45,104 +47,46 @@ struct CheckpointClock {
   std::int64_t step_count = 0;
 };
 
+// Named values of the caller's own, kept bit-exactly beside the simulation's state, so a
+// driver resumes its running sums and output schedule exactly where it stopped.
+class CheckpointValues {
+ public:
+  void set(const std::string& name, double value) {
+    require(!name.empty() && name.find('\n') == std::string::npos,
+            "CheckpointValues: name '" + name + "' must be non-empty and on one line");
+    for (auto& [key, stored] : entries_) {
+      if (key == name) {
+        stored = value;
+        return;
+      }
+    }
+    entries_.emplace_back(name, value);
+  }
+  bool has(const std::string& name) const {
+    for (const auto& entry : entries_) {
+      if (entry.first == name) return true;
+    }
+    return false;
+  }
+  // The value stored under `name`; an Error naming `where` if there is none.
+  double get(const std::string& name, const std::string& where = "checkpoint") const {
+    for (const auto& [key, value] : entries_) {
+      if (key == name) return value;
+    }
+    throw Error(where + ": holds no value '" + name +
+                "' (written by another program or an older version?)");
+  }
+  bool empty() const { return entries_.empty(); }
+  const std::vector<std::pair<std::string, double>>& entries() const { return entries_; }
+
+ private:
+  std::vector<std::pair<std::string, double>> entries_;
+};
+
 namespace detail {
 
 inline constexpr const char* checkpoint_format = "cosmpm-checkpoint";
 inline constexpr std::int64_t checkpoint_version = 1;
-
-// Exact text of a double (hexadecimal float), so geometry compares bit for bit.
-inline std::string exact_text(double value) {
-  char buffer[64];
-  std::snprintf(buffer, sizeof(buffer), "%a", value);
-  return buffer;
-}
-
-// "field.<label>=<type>" items of a store, in declaration order.
-template <class Store>
-std::string store_signature() {
-  std::string text;
-  for_each_tag<Store>([&](auto tag) {
-    using Tag = decltype(tag);
-    using V = typename Tag::value_type;
-    text += "; field." + std::string(Tag::label()) + "=";
-    constexpr FieldKind kind = field_kind<V>();
-    if constexpr (kind == FieldKind::real) {
-      text += "double";
-    } else if constexpr (kind == FieldKind::integer) {
-      text += "int32";
-    } else if constexpr (kind == FieldKind::eigen) {
-      text += "double[" + std::to_string(EigenFixed<V>::rows) + "x" +
-              std::to_string(EigenFixed<V>::cols) + "]";
-    } else {
-      text += "bytes[" + std::to_string(sizeof(V)) + "](";
-      for (std::size_t k = 0; k < V::labels.size(); ++k) {
-        if (k > 0) text += ',';
-        text += V::labels[k];
-      }
-      text += ")";
-    }
-  });
-  return text;
-}
-
-// Splits "key=value; key=value" into items.
-inline std::vector<std::string> signature_items(const std::string& signature) {
-  std::vector<std::string> items;
-  std::size_t start = 0;
-  while (start <= signature.size()) {
-    const std::size_t end = std::min(signature.find("; ", start), signature.size());
-    if (end > start) items.push_back(signature.substr(start, end - start));
-    start = end + 2;
-  }
-  return items;
-}
-
-// The first difference between two signatures, in words.
-inline std::string signature_difference(const std::string& in_file, const std::string& expected) {
-  const auto file_items = signature_items(in_file);
-  const auto our_items = signature_items(expected);
-  auto key_of = [](const std::string& item) { return item.substr(0, item.find('=')); };
-  auto value_of = [](const std::string& item) {
-    const std::size_t eq = item.find('=');
-    return eq == std::string::npos ? std::string() : item.substr(eq + 1);
-  };
-  for (const auto& ours : our_items) {
-    bool found = false;
-    for (const auto& theirs : file_items) {
-      if (key_of(theirs) != key_of(ours)) continue;
-      found = true;
-      if (theirs != ours) {
-        return key_of(ours) + " is '" + value_of(theirs) + "' in the file but '" + value_of(ours) +
-               "' in this simulation";
-      }
-    }
-    if (!found)
-      return "the file has no " + key_of(ours) + " (this simulation has '" + value_of(ours) + "')";
-  }
-  for (const auto& theirs : file_items) {
-    bool found = false;
-    for (const auto& ours : our_items) found = found || key_of(ours) == key_of(theirs);
-    if (!found) return "the file has " + theirs + ", which this simulation does not";
-  }
-  return "the item order differs";
-}
-
-// A readable type name for the signature (demangled where the ABI allows).
-template <class T>
-std::string type_name() {
-  const char* mangled = typeid(T).name();
-#if defined(COSMPM_IO_HAVE_CXXABI)
-  int status = 0;
-  char* readable = abi::__cxa_demangle(mangled, nullptr, nullptr, &status);
-  if (status == 0 && readable != nullptr) {
-    std::string name = readable;
-    std::free(readable);
-    return name;
-  }
-  std::free(readable);
-#endif
-  return mangled;
-}
 
 template <class Sim>
 concept HasContactState = requires(Sim& sim, const std::vector<double>& values) {
@@ -150,18 +94,83 @@ concept HasContactState = requires(Sim& sim, const std::vector<double>& values) 
   sim.contact().restore_checkpoint_values(values);
 };
 
+// Named values as a dataset with their names (one per line) in its attribute "names".
+inline void write_values(Hdf5File& file, const std::string& group, const CheckpointValues& named) {
+  std::vector<double> values;
+  std::string names;
+  for (const auto& [name, value] : named.entries()) {
+    values.push_back(value);
+    names += (names.empty() ? "" : "\n") + name;
+  }
+  const std::string dataset = group + "/values";
+  file.create_group(group);
+  file.write(dataset, values.data(), {static_cast<hsize_t>(values.size())},
+             DatasetOptions{.checksum = true});
+  file.set_attribute("names", names, dataset);
+}
+
+// The values of write_values; none if the file has no such group.
+inline CheckpointValues read_values(const Hdf5File& file, const std::string& group) {
+  CheckpointValues named;
+  const std::string dataset = group + "/values";
+  if (!file.has(dataset)) return named;
+  const auto dims = file.shape(dataset);
+  std::vector<double> values(dims.size() == 1 ? static_cast<std::size_t>(dims[0]) : 0);
+  file.read(dataset, values.data(), {values.size()}, true);
+  const std::string names = file.string_attribute("names", dataset);
+  std::size_t start = 0;
+  for (const double value : values) {
+    const std::size_t end = std::min(names.find('\n', start), names.size());
+    named.set(names.substr(start, end - start), value);
+    start = end + 1;
+  }
+  if (named.entries().size() != values.size()) {
+    file.fail(dataset, "has names that do not match its values");
+  }
+  return named;
+}
+
+inline CheckpointValues stray_values(const StrayReport& strays) {
+  CheckpointValues values;
+  values.set("stray_count", static_cast<double>(strays.count));
+  values.set("stray_mass", strays.mass);
+  values.set("stray_count_last_step", static_cast<double>(strays.count_last_step));
+  values.set("stray_mass_last_step", strays.mass_last_step);
+  return values;
+}
+
+inline StrayReport stray_report(const CheckpointValues& values) {
+  StrayReport strays;
+  if (values.empty()) return strays;  // a checkpoint of a run that lost no particle
+  const std::string where = "checkpoint /engine/values";
+  strays.count = static_cast<Index>(values.get("stray_count", where));
+  strays.mass = values.get("stray_mass", where);
+  strays.count_last_step = static_cast<Index>(values.get("stray_count_last_step", where));
+  strays.mass_last_step = values.get("stray_mass_last_step", where);
+  return strays;
+}
+
 }  // namespace detail
+
+// The particles that left the grid (SimulationParameters::stray_particles): those frozen and
+// the count and mass of all, written beside the particles.
+template <class Store>
+struct CheckpointStrays {
+  Store frozen;
+  StrayReport report;
+};
 
 // Writes `particles` and `clock` to `path` (temporary name + rename). `composition` is the
 // signature load compares against; see composition_signature for a simulation's.
 template <class Store>
 void write_checkpoint(const std::filesystem::path& path, const Store& particles,
                       const CheckpointClock& clock, const std::string& composition,
-                      const std::vector<double>* contact_values = nullptr) {
+                      const std::vector<double>* contact_values = nullptr,
+                      const CheckpointValues* caller_values = nullptr,
+                      const CheckpointStrays<Store>* strays = nullptr) {
   if (path.has_parent_path()) create_directories(path.parent_path(), "save_checkpoint");
   TemporaryFile temporary(path);
   Hdf5File file = Hdf5File::create(temporary.path(), /*checksummed_metadata=*/true);
-  const auto count = static_cast<hsize_t>(particles.size());
   file.set_attribute("format", std::string(detail::checkpoint_format));
   file.set_attribute("version", detail::checkpoint_version);
   file.set_attribute("composition", composition);
@@ -171,30 +180,20 @@ void write_checkpoint(const std::filesystem::path& path, const Store& particles,
   file.set_attribute("time", clock.time);
   file.set_attribute("step_count", clock.step_count);
   file.set_attribute("particle_count", static_cast<std::int64_t>(particles.size()));
-  file.create_group("/particles");
-  const DatasetOptions checked{.checksum = true};
-  detail::for_each_tag<Store>([&](auto tag) {
-    using Tag = decltype(tag);
-    using V = typename Tag::value_type;
-    const std::string name = "/particles/" + std::string(Tag::label());
-    const auto& column = particles.template get<Tag>();
-    constexpr detail::FieldKind kind = detail::field_kind<V>();
-    if constexpr (kind == detail::FieldKind::real || kind == detail::FieldKind::integer) {
-      file.write(name, column.data(), {count}, checked);
-    } else if constexpr (kind == detail::FieldKind::eigen) {
-      constexpr auto components =
-          static_cast<hsize_t>(detail::EigenFixed<V>::rows * detail::EigenFixed<V>::cols);
-      file.write(name, detail::flatten(column).data(), {count, components}, checked);
-    } else {
-      std::vector<unsigned char> bytes(column.size() * sizeof(V));
-      if (!bytes.empty()) std::memcpy(bytes.data(), column.data(), bytes.size());
-      file.write(name, bytes.data(), {count, static_cast<hsize_t>(sizeof(V))}, checked);
-    }
-  });
+  detail::write_store(file, "/particles", particles);
   if (contact_values != nullptr) {
     file.create_group("/contact");
     file.write("/contact/values", contact_values->data(),
-               {static_cast<hsize_t>(contact_values->size())}, checked);
+               {static_cast<hsize_t>(contact_values->size())}, DatasetOptions{.checksum = true});
+  }
+  if (caller_values != nullptr && !caller_values->empty()) {
+    detail::write_values(file, "/caller", *caller_values);
+  }
+  if (strays != nullptr && (strays->report.count > 0 || strays->frozen.size() > 0)) {
+    detail::write_values(file, "/engine", detail::stray_values(strays->report));
+    detail::write_store(file, "/frozen", strays->frozen);
+    file.set_attribute("particle_count", static_cast<std::int64_t>(strays->frozen.size()),
+                       "/frozen");
   }
   file.close();
   temporary.commit();
@@ -205,7 +204,9 @@ void write_checkpoint(const std::filesystem::path& path, const Store& particles,
 template <class Store>
 CheckpointClock read_checkpoint(const std::filesystem::path& path, Store& particles,
                                 const std::string& composition,
-                                std::vector<double>* contact_values = nullptr) {
+                                std::vector<double>* contact_values = nullptr,
+                                CheckpointValues* caller_values = nullptr,
+                                CheckpointStrays<Store>* strays = nullptr) {
   const std::string where = "load_checkpoint: '" + path.string() + "'";
   Hdf5File file = Hdf5File::open_read(path);
   if (!file.has_attribute("format") ||
@@ -225,44 +226,32 @@ CheckpointClock read_checkpoint(const std::filesystem::path& path, Store& partic
     throw Error(where + " was written by a different composition: " +
                 detail::signature_difference(stored, composition));
   }
-  const auto count = file.attribute<std::int64_t>("particle_count");
-  if (count < 0) {
-    throw Error(where + ": particle_count = " + std::to_string(count) +
-                " is outside the valid range [0, inf)");
-  }
+  auto count_of = [&](const std::string& object) {
+    const auto count = file.attribute<std::int64_t>("particle_count", object);
+    if (count < 0) {
+      throw Error(where + ": particle_count of " + object + " = " + std::to_string(count) +
+                  " is outside the valid range [0, inf)");
+    }
+    return static_cast<Index>(count);
+  };
   CheckpointClock clock;
   clock.time = file.attribute<double>("time");
   clock.step_count = file.attribute<std::int64_t>("step_count");
 
   Store loaded = particles;
-  loaded.resize(static_cast<Index>(count));
-  const auto rows = static_cast<hsize_t>(count);
-  detail::for_each_tag<Store>([&](auto tag) {
-    using Tag = decltype(tag);
-    using V = typename Tag::value_type;
-    const std::string name = "/particles/" + std::string(Tag::label());
-    auto& column = loaded.template get<Tag>();
-    constexpr detail::FieldKind kind = detail::field_kind<V>();
-    if constexpr (kind == detail::FieldKind::real || kind == detail::FieldKind::integer) {
-      file.read(name, column.data(), {rows}, /*exact_type=*/true);
-    } else if constexpr (kind == detail::FieldKind::eigen) {
-      constexpr auto components =
-          static_cast<hsize_t>(detail::EigenFixed<V>::rows * detail::EigenFixed<V>::cols);
-      std::vector<double> flat(static_cast<std::size_t>(rows * components));
-      file.read(name, flat.data(), {rows, components}, true);
-      detail::unflatten(flat, column);
-    } else {
-      std::vector<unsigned char> bytes(column.size() * sizeof(V));
-      file.read(name, bytes.data(), {rows, static_cast<hsize_t>(sizeof(V))}, true);
-      if (!bytes.empty())
-        std::memcpy(static_cast<void*>(column.data()), bytes.data(), bytes.size());
-    }
-  });
+  detail::read_store(file, "/particles", loaded, count_of("/"));
   if (contact_values != nullptr) {
     const auto dims = file.shape("/contact/values");
     if (dims.size() != 1) file.fail("/contact/values", "is not a 1D dataset");
     contact_values->resize(static_cast<std::size_t>(dims[0]));
     file.read("/contact/values", contact_values->data(), dims, true);
+  }
+  if (caller_values != nullptr) *caller_values = detail::read_values(file, "/caller");
+  if (strays != nullptr) {
+    CheckpointStrays<Store> left;
+    left.report = detail::stray_report(detail::read_values(file, "/engine"));
+    if (file.has("/frozen")) detail::read_store(file, "/frozen", left.frozen, count_of("/frozen"));
+    *strays = std::move(left);
   }
   particles = std::move(loaded);
   return clock;
@@ -285,6 +274,12 @@ std::string composition_signature(const Sim& sim) {
   text += "; contact=" + std::string(Sim::contact_type::name());
   text += "; contact_state=" + std::string(detail::HasContactState<Sim> ? "yes" : "no");
   text += "; continuum=" + std::string(Sim::continuum_type::is_cosserat ? "cosserat" : "classical");
+  if constexpr (requires { typename Sim::continuum_type::antilocking_type; }) {
+    text += "; antilocking=" + std::string(Sim::continuum_type::antilocking_type::name());
+  }
+  if constexpr (requires { typename Sim::transfer_type; }) {
+    text += "; transfer=" + std::string(Sim::transfer_type::name());
+  }
   text += "; model=" + model_name;
   const auto& grid = sim.grid();
   std::string cells;
@@ -300,43 +295,62 @@ std::string composition_signature(const Sim& sim) {
   return text + detail::store_signature<typename Sim::store_type>();
 }
 
-// Saves the particles and the clock of `sim` (and the contact law's state, if it has one).
+// Saves the particles and the clock of `sim` (and the contact law's state, if it has one, and
+// the particles that left the grid), with the caller's own `values`.
 template <class Sim>
-void save_checkpoint(const Sim& sim, const std::filesystem::path& path) {
+void save_checkpoint(const Sim& sim, const std::filesystem::path& path,
+                     const CheckpointValues& values = {}) {
   const CheckpointClock clock{sim.time(), sim.step_count()};
+  using Store = typename Sim::store_type;
+  const CheckpointStrays<Store> strays{sim.frozen_particles(), sim.stray_particles()};
   if constexpr (detail::HasContactState<Sim>) {
-    const std::vector<double> values = sim.contact().checkpoint_values();
-    write_checkpoint(path, sim.particles(), clock, composition_signature(sim), &values);
+    const std::vector<double> contact = sim.contact().checkpoint_values();
+    write_checkpoint(path, sim.particles(), clock, composition_signature(sim), &contact, &values,
+                     &strays);
   } else {
-    write_checkpoint(path, sim.particles(), clock, composition_signature(sim));
+    write_checkpoint(path, sim.particles(), clock, composition_signature(sim), nullptr, &values,
+                     &strays);
   }
 }
 
 // Restores a checkpoint into `sim`, which must be set up as for the run that wrote it (same
-// composition, grid and particle count); see the note at the top of this header.
+// composition, grid and particles added); see the note at the top of this header. Returns the
+// caller's values saved with it.
 template <class Sim>
-void load_checkpoint(Sim& sim, const std::filesystem::path& path) {
+CheckpointValues load_checkpoint(Sim& sim, const std::filesystem::path& path) {
   const std::string where = "load_checkpoint: '" + path.string() + "'";
   Hdf5File probe = Hdf5File::open_read(path);
   if (probe.has_attribute("particle_count")) {
+    // Particles that left the grid are no longer in the simulation that wrote the file.
     const auto stored = probe.attribute<std::int64_t>("particle_count");
-    if (stored != static_cast<std::int64_t>(sim.particles().size())) {
-      throw Error(where + " holds " + std::to_string(stored) +
-                  " particles but the simulation has " + std::to_string(sim.particles().size()) +
+    const auto left = static_cast<std::int64_t>(
+        detail::stray_report(detail::read_values(probe, "/engine")).count);
+    if (stored + left != static_cast<std::int64_t>(sim.particles().size())) {
+      throw Error(where + " holds " + std::to_string(stored) + " particles" +
+                  (left > 0 ? " and " + std::to_string(left) + " that left the grid" : "") +
+                  " but the simulation has " + std::to_string(sim.particles().size()) +
                   "; set the simulation up as for the original run (add_particles) before "
                   "loading");
     }
   }
   probe.close();
+  using Store = typename Sim::store_type;
   CheckpointClock clock;
+  CheckpointValues caller;
+  CheckpointStrays<Store> strays;
   if constexpr (detail::HasContactState<Sim>) {
-    std::vector<double> values;
-    clock = read_checkpoint(path, sim.particles(), composition_signature(sim), &values);
-    sim.contact().restore_checkpoint_values(values);
+    std::vector<double> contact;
+    clock = read_checkpoint(path, sim.particles(), composition_signature(sim), &contact, &caller,
+                            &strays);
+    sim.contact().restore_checkpoint_values(contact);
   } else {
-    clock = read_checkpoint(path, sim.particles(), composition_signature(sim));
+    clock = read_checkpoint(path, sim.particles(), composition_signature(sim), nullptr, &caller,
+                            &strays);
   }
+  sim.engine().frozen = std::move(strays.frozen);
+  sim.engine().strays = strays.report;
   sim.set_clock(clock.time, clock.step_count);
+  return caller;
 }
 
 }  // namespace cosmpm::io

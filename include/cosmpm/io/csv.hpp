@@ -3,6 +3,7 @@
 // the shortest text that reads back to the same double. Each row is written and flushed at
 // once, so the rows written before a crash are kept (a growing log cannot be written whole
 // and renamed; the header is, though, and resume() rewrites through a temporary file).
+// A table known in full is written whole instead, through a temporary file: write_csv.
 #include <cstdio>
 #include <cstdlib>
 #include <filesystem>
@@ -18,6 +19,41 @@
 #include "cosmpm/io/detail/number_text.hpp"
 
 namespace cosmpm::io {
+
+namespace detail {
+inline void check_csv_columns(const std::filesystem::path& path,
+                              const std::vector<std::string>& columns) {
+  require(!columns.empty(), "CsvWriter: '" + path.string() + "' needs at least one column");
+  for (const auto& column : columns) {
+    require(!column.empty() && column.find_first_of(",\n\r\"") == std::string::npos,
+            "CsvWriter: column name '" + column + "' of '" + path.string() +
+                "' must be non-empty without commas, quotes or line breaks");
+  }
+}
+}  // namespace detail
+
+// Writes a whole table (a header and rows of the same width) through a temporary file and a
+// rename: the file appears complete or not at all; errors name the file and the reason.
+inline void write_csv(const std::filesystem::path& path, const std::vector<std::string>& columns,
+                      const std::vector<std::vector<double>>& rows) {
+  detail::check_csv_columns(path, columns);
+  std::string text;
+  for (std::size_t i = 0; i < columns.size(); ++i) text += (i > 0 ? "," : "") + columns[i];
+  text += '\n';
+  for (const auto& row : rows) {
+    if (row.size() != columns.size()) {
+      throw Error("write_csv: a row of '" + path.string() + "' has " + std::to_string(row.size()) +
+                  " values but the file has " + std::to_string(columns.size()) + " columns");
+    }
+    for (std::size_t i = 0; i < row.size(); ++i) {
+      if (i > 0) text += ',';
+      text += detail::format_number_exact(row[i]);
+    }
+    text += '\n';
+  }
+  if (path.has_parent_path()) create_directories(path.parent_path(), "write_csv");
+  write_file_atomically(path, text);
+}
 
 class CsvWriter {
  public:
@@ -90,14 +126,7 @@ class CsvWriter {
     check_columns();
   }
 
-  void check_columns() const {
-    require(!columns_.empty(), "CsvWriter: '" + path_.string() + "' needs at least one column");
-    for (const auto& column : columns_) {
-      require(!column.empty() && column.find_first_of(",\n\r\"") == std::string::npos,
-              "CsvWriter: column name '" + column + "' of '" + path_.string() +
-                  "' must be non-empty without commas, quotes or line breaks");
-    }
-  }
+  void check_columns() const { detail::check_csv_columns(path_, columns_); }
 
   std::string header() const {
     std::string line;

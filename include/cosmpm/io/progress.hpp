@@ -2,7 +2,8 @@
 // A one-line progress report on stderr for long runs:
 //   [flat_blade] 45.2% t=1.234/3.500 s step 12345 | 3.1e6 particle-steps/s | ETA 0:42
 // On a terminal the line is redrawn in place (at most twice a second); otherwise (a log file,
-// a batch job) a plain line is printed at every further 10 % so logs stay short.
+// a batch job) a plain line is printed at every further 10 % so logs stay short, and the final
+// report is not printed again when the last plain line already showed that step.
 #include <algorithm>
 #include <chrono>
 #include <cmath>
@@ -47,6 +48,7 @@ class ProgressReporter {
       last_print_ = now - std::chrono::seconds(1);
     }
     const double fraction = end_time_ > 0.0 ? std::clamp(time / end_time_, 0.0, 1.0) : 1.0;
+    if (final && !terminal_ && printed_ && step == last_step_printed_) return;
     if (!final) {
       if (terminal_) {
         if (now - last_print_ < std::chrono::milliseconds(500)) return;
@@ -57,6 +59,8 @@ class ProgressReporter {
       }
     }
     last_print_ = now;
+    printed_ = true;
+    last_step_printed_ = step;
     const double elapsed = std::chrono::duration<double>(now - first_wall_).count();
     const double rate = elapsed > 0.0 ? static_cast<double>(particles_) *
                                             static_cast<double>(step - first_step_) / elapsed
@@ -132,6 +136,8 @@ class ProgressReporter {
   Clock::time_point first_wall_{};
   Clock::time_point last_print_{};
   int last_decile_ = 0;
+  bool printed_ = false;
+  std::int64_t last_step_printed_ = 0;
 };
 
 }  // namespace cosmpm::io

@@ -1,13 +1,15 @@
 #pragma once
-// XDMF (version 2) index of a series of HDF5 frame files, so ParaView ("Xdmf Reader") opens
-// the whole time series from one file. The XDMF file holds no data, only references
-// `<frame file>:/<dataset>`; it is rewritten (temporary name + rename) after every frame, so
-// it always lists exactly the frames that are complete on disk. No HDF5 dependency here.
+// XDMF (version 2) index of a series of HDF5 frame files, so ParaView opens the whole time
+// series from one file with either of its readers (Xdmf3ReaderS, the default, and the legacy
+// XDMFReader; checked by scripts/check_paraview.sh). The XDMF file holds no data, only
+// references `<frame file>:/<dataset>`; it is rewritten (temporary name + rename) after
+// every frame, so it lists exactly the frames that are complete on disk. No HDF5 here.
 //
-// Layout: a temporal collection; each frame is one Polyvertex grid per mesh (particles, and
-// optionally grid nodes, then wrapped in a spatial collection). Vector attributes reference
-// datasets padded to 3 components; tensor components are hyperslabs (one column of an N x C
-// dataset), so no data is duplicated for them.
+// What both readers read alike (ParaView 5.11): Polyvertex topology with an explicit
+// connectivity (without one Xdmf3 reports no cells), attributes of 1, 3 or 9 components
+// (AttributeType Scalar, Vector, Tensor; a 6-component Tensor6 is expanded differently by
+// the two readers, a hyperslab view is dropped by Xdmf3), Polygon cells for rigid bodies,
+// and Center="Grid" values, which become ParaView field data.
 #include <filesystem>
 #include <sstream>
 #include <string>
@@ -25,24 +27,23 @@ namespace cosmpm::io {
 enum class XdmfNumber { float64, int32 };
 
 struct XdmfAttribute {
-  enum class Kind {
-    scalar,     // a 1D dataset of N values
-    vector,     // an N x 3 dataset
-    component,  // column `component` of an N x `columns` dataset, shown as a scalar
-  };
-  std::string name;     // name shown in ParaView
-  std::string dataset;  // absolute path in the frame file, e.g. "/stress"
+  enum class Kind { scalar, vector, tensor };  // 1, 3 or 9 components per row
+  enum class Center { node, cell, grid };      // per point, per cell, one value per mesh
+  std::string name;                            // name shown in ParaView
+  std::string dataset;                         // absolute path in the frame file
   Kind kind = Kind::scalar;
-  Index columns = 1;    // columns of the referenced dataset (vector: 3)
-  Index component = 0;  // for Kind::component
+  Center center = Center::node;
   XdmfNumber number = XdmfNumber::float64;
 };
 
-// A cloud of points: particles or grid nodes.
+// A cloud of points (particles, grid nodes) or one polygon (a rigid body's outline).
 struct XdmfMesh {
+  enum class Topology { polyvertex, polygon };
   std::string name;
+  Topology topology = Topology::polyvertex;
   Index points = 0;
-  std::string geometry_dataset;  // N x 3 doubles
+  std::string geometry_dataset;      // points x 3 doubles
+  std::string connectivity_dataset;  // polyvertex: points int32 ids 0 .. points - 1
   std::vector<XdmfAttribute> attributes;
 };
 
@@ -93,31 +94,22 @@ inline void xdmf_heavy_item(std::ostream& out, const std::string& indent, const 
 }
 
 inline void xdmf_attribute(std::ostream& out, const std::string& indent, const std::string& file,
-                           Index points, const XdmfAttribute& attribute) {
+                           const XdmfMesh& mesh, const XdmfAttribute& attribute) {
   using Kind = XdmfAttribute::Kind;
-  const std::string type = attribute.kind == Kind::vector ? "Vector" : "Scalar";
+  using Center = XdmfAttribute::Center;
+  const char* type = attribute.kind == Kind::scalar   ? "Scalar"
+                     : attribute.kind == Kind::vector ? "Vector"
+                                                      : "Tensor";
+  const char* center = attribute.center == Center::node   ? "Node"
+                       : attribute.center == Center::cell ? "Cell"
+                                                          : "Grid";
+  const Index rows = attribute.center == Center::node ? mesh.points : 1;
+  std::string dimensions = std::to_string(rows);
+  if (attribute.kind == Kind::vector) dimensions += " 3";
+  if (attribute.kind == Kind::tensor) dimensions += " 9";
   out << indent << "<Attribute Name=\"" << xml_escape(attribute.name) << "\" AttributeType=\""
-      << type << "\" Center=\"Node\">\n";
-  const std::string inner = indent + "  ";
-  const std::string n = std::to_string(points);
-  switch (attribute.kind) {
-    case Kind::scalar:
-      xdmf_heavy_item(out, inner, file, attribute.dataset, n, attribute.number);
-      break;
-    case Kind::vector:
-      xdmf_heavy_item(out, inner, file, attribute.dataset, n + " 3", attribute.number);
-      break;
-    case Kind::component:
-      // Start, stride and count rows of the hyperslab over the N x C dataset.
-      out << inner << "<DataItem ItemType=\"HyperSlab\" Type=\"HyperSlab\" Dimensions=\"" << n
-          << " 1\">\n";
-      out << inner << "  <DataItem Dimensions=\"3 2\" Format=\"XML\">0 " << attribute.component
-          << " 1 1 " << n << " 1</DataItem>\n";
-      xdmf_heavy_item(out, inner + "  ", file, attribute.dataset,
-                      n + " " + std::to_string(attribute.columns), attribute.number);
-      out << inner << "</DataItem>\n";
-      break;
-  }
+      << type << "\" Center=\"" << center << "\">\n";
+  xdmf_heavy_item(out, indent + "  ", file, attribute.dataset, dimensions, attribute.number);
   out << indent << "</Attribute>\n";
 }
 
@@ -127,41 +119,68 @@ inline void xdmf_mesh(std::ostream& out, const std::string& indent, const XdmfFr
   const std::string n = std::to_string(mesh.points);
   out << indent << "<Grid Name=\"" << xml_escape(mesh.name) << "\" GridType=\"Uniform\">\n";
   if (with_time) out << inner << "<Time Value=\"" << format_number_exact(frame.time) << "\"/>\n";
-  out << inner << "<Topology TopologyType=\"Polyvertex\" NumberOfElements=\"" << n
-      << "\" NodesPerElement=\"1\"/>\n";
+  if (mesh.topology == XdmfMesh::Topology::polyvertex) {
+    out << inner << "<Topology TopologyType=\"Polyvertex\" NumberOfElements=\"" << n
+        << "\" NodesPerElement=\"1\">\n";
+    xdmf_heavy_item(out, inner + "  ", frame.file, mesh.connectivity_dataset, n + " 1",
+                    XdmfNumber::int32);
+  } else {
+    out << inner << "<Topology TopologyType=\"Polygon\" NumberOfElements=\"1\" NodesPerElement=\""
+        << n << "\">\n";
+    out << inner << "  <DataItem Dimensions=\"1 " << n << "\" "
+        << xdmf_number_type(XdmfNumber::int32) << " Format=\"XML\">";
+    for (Index k = 0; k < mesh.points; ++k) out << (k > 0 ? " " : "") << k;
+    out << "</DataItem>\n";
+  }
+  out << inner << "</Topology>\n";
   out << inner << "<Geometry GeometryType=\"XYZ\">\n";
   xdmf_heavy_item(out, inner + "  ", frame.file, mesh.geometry_dataset, n + " 3",
                   XdmfNumber::float64);
   out << inner << "</Geometry>\n";
   for (const auto& attribute : mesh.attributes) {
-    xdmf_attribute(out, inner, frame.file, mesh.points, attribute);
+    xdmf_attribute(out, inner, frame.file, mesh, attribute);
   }
   out << indent << "</Grid>\n";
 }
 }  // namespace detail
 
-// The text of an XDMF file listing `frames` in order.
-inline std::string render_xdmf(const std::vector<XdmfFrame>& frames) {
+// The XML of one frame inside the temporal collection: its only mesh, or a spatial
+// collection of its meshes. Frame files keep this text, so an index can be rebuilt from them.
+inline std::string render_xdmf_frame(const XdmfFrame& frame) {
   std::ostringstream out;
-  out << "<?xml version=\"1.0\" ?>\n"
-      << "<!DOCTYPE Xdmf SYSTEM \"Xdmf.dtd\" []>\n"
-      << "<Xdmf Version=\"2.0\">\n"
-      << "  <Domain>\n"
-      << "    <Grid Name=\"series\" GridType=\"Collection\" CollectionType=\"Temporal\">\n";
-  for (const auto& frame : frames) {
-    if (frame.meshes.size() == 1) {
-      detail::xdmf_mesh(out, "      ", frame, frame.meshes.front(), true);
-      continue;
-    }
-    out << "      <Grid Name=\"frame\" GridType=\"Collection\" CollectionType=\"Spatial\">\n";
-    out << "        <Time Value=\"" << detail::format_number_exact(frame.time) << "\"/>\n";
-    for (const auto& mesh : frame.meshes) detail::xdmf_mesh(out, "        ", frame, mesh, false);
-    out << "      </Grid>\n";
+  const std::string indent = "      ";
+  if (frame.meshes.size() == 1) {
+    detail::xdmf_mesh(out, indent, frame, frame.meshes.front(), true);
+  } else {
+    out << indent << "<Grid Name=\"frame\" GridType=\"Collection\" CollectionType=\"Spatial\">\n";
+    out << indent << "  <Time Value=\"" << detail::format_number_exact(frame.time) << "\"/>\n";
+    for (const auto& mesh : frame.meshes) detail::xdmf_mesh(out, indent + "  ", frame, mesh, false);
+    out << indent << "</Grid>\n";
   }
-  out << "    </Grid>\n"
-      << "  </Domain>\n"
-      << "</Xdmf>\n";
   return out.str();
+}
+
+// The text of an XDMF file listing frames, each given as render_xdmf_frame's text.
+inline std::string render_xdmf(const std::vector<std::string>& frame_texts) {
+  std::string out =
+      "<?xml version=\"1.0\" ?>\n"
+      "<!DOCTYPE Xdmf SYSTEM \"Xdmf.dtd\" []>\n"
+      "<Xdmf Version=\"2.0\">\n"
+      "  <Domain>\n"
+      "    <Grid Name=\"series\" GridType=\"Collection\" CollectionType=\"Temporal\">\n";
+  for (const auto& text : frame_texts) out += text;
+  out +=
+      "    </Grid>\n"
+      "  </Domain>\n"
+      "</Xdmf>\n";
+  return out;
+}
+
+inline std::string render_xdmf(const std::vector<XdmfFrame>& frames) {
+  std::vector<std::string> texts;
+  texts.reserve(frames.size());
+  for (const auto& frame : frames) texts.push_back(render_xdmf_frame(frame));
+  return render_xdmf(texts);
 }
 
 // Keeps the list of frames and rewrites the XDMF file after each one.
@@ -170,14 +189,16 @@ class XdmfWriter {
   explicit XdmfWriter(std::filesystem::path path) : path_(std::move(path)) {}
 
   const std::filesystem::path& path() const { return path_; }
-  const std::vector<XdmfFrame>& frames() const { return frames_; }
+  Index frame_count() const { return static_cast<Index>(frames_.size()); }
 
-  void add_frame(XdmfFrame frame) {
-    frames_.push_back(std::move(frame));
+  void add_frame(const XdmfFrame& frame) { add_frame_text(render_xdmf_frame(frame)); }
+  // A frame given as render_xdmf_frame's text (as kept in a frame file).
+  void add_frame_text(std::string text) {
+    frames_.push_back(std::move(text));
     write();
   }
   // Lists a frame without rewriting the file yet (a restart re-lists many at once).
-  void append(XdmfFrame frame) { frames_.push_back(std::move(frame)); }
+  void append_text(std::string text) { frames_.push_back(std::move(text)); }
   // Forgets the listed frames (a restart rebuilds the list); the file is kept until the next
   // add_frame or write.
   void clear() { frames_.clear(); }
@@ -186,7 +207,7 @@ class XdmfWriter {
 
  private:
   std::filesystem::path path_;
-  std::vector<XdmfFrame> frames_;
+  std::vector<std::string> frames_;
 };
 
 }  // namespace cosmpm::io
