@@ -27,11 +27,14 @@ ctest --test-dir build/release -j "$jobs" --output-on-failure
 
 echo "== portable build: one particle per pack, no OpenMP" >&2
 # The engine's scalar-lane path (pack width 1, what compilers without vector extensions get)
-# and its serial path (no OpenMP) must give the same tested results.
+# and its serial path (no OpenMP) must give the same tested results. Only the areas with packed
+# or threaded code: analysis and io have neither, and their builds cost minutes.
+portable_areas=(core shape grid initial material continuum transfer integrator contact simulation dem)
 cmake -S . -B build/portable -G Ninja -DCMAKE_BUILD_TYPE=Release -DCMAKE_CXX_FLAGS="-DCOSMPM_PACK_WIDTH=1" \
   -DCOSMPM_ENABLE_OPENMP=OFF -DCOSMPM_BUILD_TESTS=ON -DCOSMPM_BUILD_EXAMPLES=OFF -DCOSMPM_HEADER_CHECK=OFF >/dev/null
-cmake --build build/portable -j "$jobs"
-ctest --test-dir build/portable -j "$jobs" --output-on-failure -E "compile-fail"
+cmake --build build/portable -j "$jobs" --target "${portable_areas[@]/#/cosmpm_test_}"
+ctest --test-dir build/portable -j "$jobs" --output-on-failure \
+  -R "^($(IFS='|'; echo "${portable_areas[*]}")):"
 
 echo "== examples (short runs), ParaView's readers, the coloured-layer view" >&2
 smoke=$(mktemp -d)
