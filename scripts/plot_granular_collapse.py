@@ -57,9 +57,11 @@ def last_frame(run):
     import h5py  # only needed for the particle picture
 
     with h5py.File(frames[-1], "r") as handle:
-        return {"position": handle["position"][...],
-                "initial_position": handle["initial_position"][...],
-                "volume": handle["volume"][...], "time": handle.attrs["time"]}
+        # Frame format 2 keeps the particles in a group, positions as x, y, z.
+        group = handle["particles"] if "particles" in handle else handle
+        return {"position": group["position"][...][:, :2],
+                "initial_position": group["initial_position"][...][:, :2],
+                "volume": group["volume"][...], "time": handle.attrs["time"]}
 
 
 def plot_deposit(runs, labels, output):
