@@ -13,7 +13,6 @@ Writes into the first RUN_DIR (or --output):
                against time, linear and logarithmic, with the rest threshold
 """
 import argparse
-import csv
 import pathlib
 
 import matplotlib
@@ -23,14 +22,7 @@ import matplotlib.patches  # noqa: E402
 import matplotlib.pyplot as plt  # noqa: E402
 import numpy as np  # noqa: E402
 
-
-def read_csv(path):
-    with open(path, newline="") as handle:
-        reader = csv.reader(handle)
-        header = next(reader)
-        rows = [[float(v) for v in row] for row in reader if row]
-    data = np.array(rows) if rows else np.zeros((0, len(header)))
-    return {name: data[:, i] for i, name in enumerate(header)}
+from plot_flat_blade import read_csv  # noqa: E402  (same folder)
 
 
 def read_summary(path):

@@ -122,8 +122,8 @@ void update_grid(State& s, double dt) {
   // The momentum update of node n from its start velocity v_start (its start spin in
   // spin_momentum, as a rate when spin_is_rate, else as a moment of momentum):
   // nodes.momentum becomes v_start, nodes.velocity the trial end velocity.
-  const auto update_node = [&](Index n, const Vec<Dim>& v_start, bool spin_is_rate) {
-    const double inverse_mass = 1.0 / nodes.mass[n];  // one division per node instead of 2 Dim
+  const auto update_node = [&](Index n, double inverse_mass, const Vec<Dim>& v_start,
+                               bool spin_is_rate) {
     Vec<Dim> force = nodes.force[n];
     if (damping > 0.0) {
       for (int d = 0; d < Dim; ++d) force[d] = damped(force[d], v_start[d]);
@@ -157,7 +157,7 @@ void update_grid(State& s, double dt) {
         clear_empty_node(n);
         continue;
       }
-      update_node(n, Vec<Dim>(nodes.momentum[n]), /*spin_is_rate=*/true);
+      update_node(n, 1.0 / nodes.mass[n], Vec<Dim>(nodes.momentum[n]), /*spin_is_rate=*/true);
     }
   } else {
     COSMPM_OMP_PARALLEL_FOR(s.threads, count, 512)
@@ -167,7 +167,9 @@ void update_grid(State& s, double dt) {
         clear_empty_node(n);
         continue;
       }
-      update_node(n, Vec<Dim>(nodes.momentum[n] * (1.0 / m)), /*spin_is_rate=*/false);
+      const double inverse_mass = 1.0 / m;  // one division per node instead of 2 Dim
+      update_node(n, inverse_mass, Vec<Dim>(nodes.momentum[n] * inverse_mass),
+                  /*spin_is_rate=*/false);
     }
   }
   // Contact corrects the updated velocity, so the acceleration (and through FLIP the
