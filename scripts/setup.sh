@@ -4,7 +4,7 @@ set -euo pipefail
 # paraview, python3-paraview, xvfb and xauth: CI opens frames in ParaView's own readers
 # (pvbatch under a virtual X server); scripts/paraview_layers.py renders the paper's view.
 packages=(build-essential cmake ninja-build git libeigen3-dev libhdf5-dev doctest-dev
-          libbenchmark-dev clang-format python3 python3-matplotlib python3-h5py python3-numpy
+          libbenchmark-dev clang-format ccache python3 python3-matplotlib python3-h5py python3-numpy
           paraview python3-paraview xvfb xauth)
 missing=()
 for package in "${packages[@]}"; do

@@ -14,12 +14,22 @@ jobs=${COSMPM_JOBS:-2}
 export OMP_WAIT_POLICY=${OMP_WAIT_POLICY:-passive}
 "$root/scripts/setup.sh"
 
+# A compiler cache shared by every clone on this machine: no object depends on where the clone
+# lives (CCACHE_BASEDIR makes the compiler's paths relative, CCACHE_NOHASHDIR keeps the working
+# directory out of the hash; tests take their output directory from the environment).
+launcher=()
+if command -v ccache >/dev/null; then
+  export CCACHE_BASEDIR="$root" CCACHE_NOHASHDIR=true CCACHE_MAXSIZE=${CCACHE_MAXSIZE:-12G}
+  launcher=(-DCMAKE_CXX_COMPILER_LAUNCHER=ccache)
+  ccache --zero-stats >/dev/null
+fi
+
 echo "== clang-format" >&2
 mapfile -t sources < <(git ls-files '*.hpp' '*.cpp' 2>/dev/null || find include tests examples benchmarks -name '*.[hc]pp')
 clang-format --dry-run -Werror "${sources[@]}"
 
 echo "== Release build" >&2
-cmake -S . -B build/release -G Ninja -DCMAKE_BUILD_TYPE=Release \
+cmake "${launcher[@]}" -S . -B build/release -G Ninja -DCMAKE_BUILD_TYPE=Release \
   -DCOSMPM_BUILD_TESTS=ON -DCOSMPM_BUILD_EXAMPLES=ON -DCOSMPM_BUILD_BENCHMARKS=ON \
   -DCOSMPM_HEADER_CHECK=ON -DCMAKE_INSTALL_PREFIX="$root/build/install" >/dev/null
 cmake --build build/release -j "$jobs"
@@ -30,7 +40,7 @@ echo "== portable build: one particle per pack, no OpenMP" >&2
 # and its serial path (no OpenMP) must give the same tested results. Only the areas with packed
 # or threaded code: analysis and io have neither, and their builds cost minutes.
 portable_areas=(core shape grid initial material continuum transfer integrator contact simulation dem)
-cmake -S . -B build/portable -G Ninja -DCMAKE_BUILD_TYPE=Release -DCMAKE_CXX_FLAGS="-DCOSMPM_PACK_WIDTH=1" \
+cmake "${launcher[@]}" -S . -B build/portable -G Ninja -DCMAKE_BUILD_TYPE=Release -DCMAKE_CXX_FLAGS="-DCOSMPM_PACK_WIDTH=1" \
   -DCOSMPM_ENABLE_OPENMP=OFF -DCOSMPM_BUILD_TESTS=ON -DCOSMPM_BUILD_EXAMPLES=OFF -DCOSMPM_HEADER_CHECK=OFF >/dev/null
 cmake --build build/portable -j "$jobs" --target "${portable_areas[@]/#/cosmpm_test_}"
 ctest --test-dir build/portable -j "$jobs" --output-on-failure \
@@ -70,7 +80,7 @@ rm -rf "$smoke"
 echo "== ASan + UBSan build" >&2
 # -O1 -g1: sanitizers want some optimisation for speed and line numbers for reports; more of
 # either costs minutes of compile time on two cores.
-cmake -S . -B build/sanitize -G Ninja -DCMAKE_BUILD_TYPE=None -DCMAKE_CXX_FLAGS="-O1 -g1" -DCOSMPM_SANITIZE=ON \
+cmake "${launcher[@]}" -S . -B build/sanitize -G Ninja -DCMAKE_BUILD_TYPE=None -DCMAKE_CXX_FLAGS="-O1 -g1" -DCOSMPM_SANITIZE=ON \
   -DCOSMPM_BUILD_TESTS=ON -DCOSMPM_BUILD_EXAMPLES=OFF -DCOSMPM_HEADER_CHECK=OFF >/dev/null
 cmake --build build/sanitize -j "$jobs"
 ASAN_OPTIONS=detect_leaks=1 UBSAN_OPTIONS=print_stacktrace=1:halt_on_error=1 \
@@ -82,23 +92,24 @@ ASAN_OPTIONS=detect_leaks=1 UBSAN_OPTIONS=print_stacktrace=1:halt_on_error=1 \
 echo "== consumer project: find_package (with and without HDF5), add_subdirectory, docs/usage.md" >&2
 rm -rf build/install
 cmake --install build/release >/dev/null
-cmake -S tests/consumer -B build/consumer-installed -G Ninja -DCMAKE_BUILD_TYPE=Release \
+cmake "${launcher[@]}" -S tests/consumer -B build/consumer-installed -G Ninja -DCMAKE_BUILD_TYPE=Release \
   -DCOSMPM_CONSUMER_MODE=find_package -DCMAKE_PREFIX_PATH="$root/build/install" >/dev/null
 cmake --build build/consumer-installed -j "$jobs"
 ./build/consumer-installed/cosmpm_consumer
 ./build/consumer-installed/cosmpm_consumer_io
 for usage in build/consumer-installed/cosmpm_usage_*; do "$usage" >/dev/null; done
 # The core needs no HDF5: configured with find_package(HDF5) disabled.
-cmake -S tests/consumer -B build/consumer-core -G Ninja -DCMAKE_BUILD_TYPE=Release \
+cmake "${launcher[@]}" -S tests/consumer -B build/consumer-core -G Ninja -DCMAKE_BUILD_TYPE=Release \
   -DCOSMPM_CONSUMER_MODE=find_package -DCOSMPM_CONSUMER_CORE_ONLY=ON \
   -DCMAKE_DISABLE_FIND_PACKAGE_HDF5=ON -DCMAKE_PREFIX_PATH="$root/build/install" >/dev/null
 cmake --build build/consumer-core -j "$jobs"
 ./build/consumer-core/cosmpm_consumer
-cmake -S tests/consumer -B build/consumer-subdirectory -G Ninja -DCMAKE_BUILD_TYPE=Release \
+cmake "${launcher[@]}" -S tests/consumer -B build/consumer-subdirectory -G Ninja -DCMAKE_BUILD_TYPE=Release \
   -DCOSMPM_CONSUMER_MODE=add_subdirectory -DCOSMPM_SOURCE_DIR="$root" \
   -DCOSMPM_CONSUMER_USAGE=OFF >/dev/null
 cmake --build build/consumer-subdirectory -j "$jobs"
 ./build/consumer-subdirectory/cosmpm_consumer
 ./build/consumer-subdirectory/cosmpm_consumer_io
 
+[ ${#launcher[@]} -eq 0 ] || ccache --show-stats >&2
 echo "== all checks passed" >&2

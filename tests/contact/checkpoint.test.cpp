@@ -6,6 +6,7 @@
 
 #include "contact_test_support.hpp"
 #include "cosmpm/io/checkpoint.hpp"
+#include "test_output.hpp"
 
 namespace {
 using namespace cosmpm;
@@ -29,7 +30,7 @@ test::RigidSim make_blade_run() {
 }  // namespace
 
 TEST_CASE("checkpoint: a blade run restarts bit-identically, the blade's pose included") {
-  const auto dir = std::filesystem::path(COSMPM_TEST_OUTPUT_DIR) / "contact";
+  const auto dir = test::output_root() / "contact";
   std::filesystem::create_directories(dir);
   const double dt = 2e-4;  // below the stable 0.5 * 0.015 / 36.7 = 2.04e-4 s
   auto straight = make_blade_run();

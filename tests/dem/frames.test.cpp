@@ -12,6 +12,7 @@
 #include "cosmpm/dem/hdf5_frames.hpp"
 #include "cosmpm/dem/simulation.hpp"
 #include "cosmpm/io/hdf5.hpp"
+#include "test_output.hpp"
 
 namespace {
 using namespace cosmpm;
@@ -39,7 +40,7 @@ dem::Simulation<> small_pile() {
 }  // namespace
 
 TEST_CASE("frames: particles, contacts and walls read back and are indexed for ParaView") {
-  const fs::path dir = fs::path(COSMPM_TEST_OUTPUT_DIR) / "dem_frames";
+  const fs::path dir = cosmpm::test::output_root() / "dem_frames";
   fs::remove_all(dir);
   auto sim = small_pile();
   dem::FrameWriter writer(dir, "pile");
@@ -86,7 +87,7 @@ TEST_CASE("frames: particles, contacts and walls read back and are indexed for P
 }
 
 TEST_CASE("frames: an unstable run keeps the frames written before it stopped") {
-  const fs::path dir = fs::path(COSMPM_TEST_OUTPUT_DIR) / "dem_frames_unstable";
+  const fs::path dir = cosmpm::test::output_root() / "dem_frames_unstable";
   fs::remove_all(dir);
   auto sim = small_pile();
   dem::FrameWriter writer(dir, "pile");

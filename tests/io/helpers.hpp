@@ -14,6 +14,7 @@
 #include "cosmpm/material/concept.hpp"
 #include "cosmpm/particles/fields.hpp"
 #include "cosmpm/particles/store.hpp"
+#include "test_output.hpp"
 
 namespace cosmpm::test_io {
 
@@ -58,7 +59,7 @@ inline Store2 random_store(Index count, unsigned seed = 12345) {
 }
 
 inline std::filesystem::path output_dir(const std::string& name) {
-  const std::filesystem::path dir = std::filesystem::path(COSMPM_TEST_OUTPUT_DIR) / "io" / name;
+  const std::filesystem::path dir = cosmpm::test::output_root() / "io" / name;
   std::filesystem::remove_all(dir);
   std::filesystem::create_directories(dir);
   return dir;
