@@ -45,9 +45,9 @@ struct OneNode {
     return velocity[static_cast<std::size_t>(node)];
   }
   // A face condition on the node (the floor's face y = 0 here), then the law's look at it.
-  void condition(grid::BoundaryKind kind, int axis = 1) {
+  void condition(grid::BoundaryKind kind, int axis = 1, double wall_friction = 0.0) {
     grid::BoundaryConditions<2> conditions;
-    conditions.set(grid::BoundaryConditions<2>::face(axis, false), kind);
+    conditions.set(grid::BoundaryConditions<2>::face(axis, false), kind, wall_friction);
     std::vector<unsigned char> imposed(velocity.size(), 0);
     const unsigned components = grid::BoundaryConditions<2>::apply(
         conditions[grid::BoundaryConditions<2>::face(axis, false)], axis, false,
@@ -130,6 +130,43 @@ TEST_CASE("correction: the recorded force is what the node received after the co
   free.correct(Vec<2>(1.0, -1.0));
   free.condition(grid::BoundaryKind::free);
   CHECK(free.law.force_on_material(0).isApprox(Vec<2>(-10.0, 20.0)));
+}
+
+TEST_CASE("correction: a body pushing material along a friction wall overcomes its friction") {
+  // The blade's tip on a rough floor, turned on its side: the body moves up at 1 m/s (normal
+  // +y at the node), a friction wall on the face x = min (outward normal -x, mu_w = 0.5).
+  OneNode tip(contact::Interface::coulomb(0.5), Vec<2>(0.0, 1.0));
+  // Trial (-1, 0.2): v_rel = (-1, -0.8), approach 0.8, |v_t| = 1 > mu 0.8 = 0.4: slip to
+  // (1, 1) + (1 - 0.4) (-1, 0) = (-0.6, 1); force on the material 2 (0.4, 0.8) / 0.1 = (8, 16).
+  CHECK(tip.correct(Vec<2>(-1.0, 0.2)).isApprox(Vec<2>(-0.6, 1.0)));
+  // The wall removes the approach 0.6 (its normal, x, imposed) and slows the tangential 1 by
+  // mu_w 0.6 = 0.3 to 0.7: the material falls behind the body, which pushes it back to 1
+  // through y. The body's force: its own 16 N plus 2 (0.3) / 0.1 = 6 N, the wall's friction
+  // mu_w (2 (0.6) / 0.1 = 12 N); nothing in x, which the wall imposed.
+  tip.condition(grid::BoundaryKind::friction, 0, 0.5);
+  CHECK(tip.velocity[static_cast<std::size_t>(tip.node)].isApprox(Vec<2>(0.0, 1.0)));
+  CHECK(tip.law.force_on_material(0).isApprox(Vec<2>(0.0, 22.0)));
+  CHECK(tip.law.contact_nodes()[0].normal_force == doctest::Approx(22.0));
+  // A fixed face imposes both components: it wins, the node stays at rest.
+  OneNode held(contact::Interface::coulomb(0.5), Vec<2>(0.0, 1.0));
+  held.correct(Vec<2>(-1.0, 0.2));
+  held.condition(grid::BoundaryKind::fixed, 0);
+  CHECK(held.velocity[static_cast<std::size_t>(held.node)].isZero());
+  CHECK(held.law.force_on_material(0).isZero());
+  // Material separating from the body that the wall then slows into it is pushed as well:
+  // trial (-1, 1.5) separates (nothing corrected); the wall stops x (approach 1) and slows y
+  // by 0.5 to 1.0, which is the body's speed: nothing to push.
+  OneNode ahead(contact::Interface::coulomb(0.5), Vec<2>(0.0, 1.0));
+  CHECK(ahead.correct(Vec<2>(-1.0, 1.5)) == Vec<2>(-1.0, 1.5));
+  ahead.condition(grid::BoundaryKind::friction, 0, 0.5);
+  CHECK(ahead.velocity[static_cast<std::size_t>(ahead.node)].isApprox(Vec<2>(0.0, 1.0)));
+  CHECK(ahead.law.force_on_material(0).isZero());
+  // With mu_w = 0.8 the wall slows it to 0.7: pushed back to 1, a force of 2 (0.3) / 0.1.
+  OneNode slowed(contact::Interface::coulomb(0.5), Vec<2>(0.0, 1.0));
+  slowed.correct(Vec<2>(-1.0, 1.5));
+  slowed.condition(grid::BoundaryKind::friction, 0, 0.8);
+  CHECK(slowed.velocity[static_cast<std::size_t>(slowed.node)].isApprox(Vec<2>(0.0, 1.0)));
+  CHECK(slowed.law.force_on_material(0).isApprox(Vec<2>(0.0, 6.0)));
 }
 
 TEST_CASE("correction: node reach per kernel") {

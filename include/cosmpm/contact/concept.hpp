@@ -8,10 +8,12 @@
 //                                velocity of USF, the end-of-step velocity, MUSL's remapped
 //                                velocity): corrects it (Bardenhagen's multi-field contact,
 //                                rigid bodies); boundary conditions come after and win;
-//   conditions_applied(const GridView<Dim>&)
-//                                after the boundary conditions of each velocity phase: the
-//                                final velocities, read only, for a law that records forces
-//                                to reconcile them with what was applied;
+//   conditions_applied(GridView<Dim>&)
+//                                after the boundary conditions of each velocity phase
+//                                (view.imposed: the components they imposed): a law that
+//                                records forces reconciles them with what was applied, and
+//                                may correct what the conditions left free (a body pushing
+//                                material along a friction wall);
 //   bool corrects_start_of_step() const
 //                                optional: true makes USL and MUSL run correct() on the
 //                                start velocity too (phase start_velocity, as USF always
@@ -43,7 +45,7 @@ concept CorrectsVelocities = requires(L& law, GridView<Dim>& view) {
 };
 
 template <class L, int Dim>
-concept ReadsConditionedVelocities = requires(L& law, const GridView<Dim>& view) {
+concept ReconcilesConditions = requires(L& law, GridView<Dim>& view) {
   law.conditions_applied(view);
 };
 
@@ -82,9 +84,10 @@ consteval bool check_contact_law() {
                   "(the velocity phases would never call it)");
   }
   if constexpr (requires { &L::conditions_applied; }) {
-    static_assert(ReadsConditionedVelocities<L, Dim>,
-                  "contact law: has a member `conditions_applied` that does not take const "
-                  "contact::GridView<Dim>&");
+    static_assert(ReconcilesConditions<L, Dim>,
+                  "contact law: has a member `conditions_applied` that does not take "
+                  "contact::GridView<Dim>& (the phases after the boundary conditions would "
+                  "never call it)");
   }
   if constexpr (requires { &L::add_forces; }) {
     static_assert(AddsForces<L, Dim>,

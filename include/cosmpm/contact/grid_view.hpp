@@ -34,7 +34,8 @@ struct GridView {
   // than this (per axis) puts mass on the node. The simulation passes node_reach<Kernel>().
   double node_reach = 1.0;
   // After the boundary conditions (conditions_applied): per node, bit d set where a face
-  // condition imposed velocity component d; empty in the correction itself.
+  // condition imposed velocity component d kinematically (grid::BoundaryConditions::apply);
+  // empty in the correction itself.
   std::span<const unsigned char> imposed = {};
   // The particles where the field was mapped from (the engine's positions at the start of the
   // step; MUSL's remapped phase: at its end) and their half-widths in cell units, for laws

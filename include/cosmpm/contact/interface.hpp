@@ -57,7 +57,8 @@ struct ContactNode {
   Vec<Dim> normal = Vec<Dim>::Zero();   // the body's outward unit normal used at the node
   Vec<Dim> tangent = Vec<Dim>::Zero();  // unit vector along the edge (start -> end vertex)
   double mass = 0.0;
-  // m (v_corrected - v_trial) / dt, less any component a boundary condition then imposed
+  // m (v_corrected - v_trial) / dt, less any component a boundary condition then imposed,
+  // plus the push back out of the body after a friction wall (RigidContact::conditions_applied)
   Vec<Dim> force_on_material = Vec<Dim>::Zero();
   double normal_force = 0.0;  // force_on_material . normal: >= 0 when the body pushes
   double shear_force = 0.0;   // force_on_material . tangent

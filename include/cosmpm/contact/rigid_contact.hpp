@@ -162,6 +162,7 @@ class RigidContact {
   // --- the contact-policy interface ----------------------------------------------------
   void correct(GridView<Dim>& view) {
     const bool record = view.phase == Phase::end_velocity;
+    examined_.clear();
     if (record) {
       records_.clear();
       recorded_ = true;
@@ -172,18 +173,46 @@ class RigidContact {
     for (int b = 0; b < body_count(); ++b) correct_body(view, b, record);
   }
 
-  // After the grid's boundary conditions: where a condition imposed a component of a contact
-  // node's velocity (a fixed floor under the blade, a roller side), the body applied nothing
-  // in that component (the condition's reaction took it), so the recorded force drops it; the
-  // records and totals are then the forces the material actually received.
-  void conditions_applied(const GridView<Dim>& view) {
-    if (view.phase != Phase::end_velocity || view.imposed.empty()) return;
-    for (auto& e : bodies_) e.force_on_material.setZero();
-    for (auto& r : records_) {
-      const unsigned imposed = view.imposed[static_cast<std::size_t>(r.node)];
-      for (int d = 0; d < Dim; ++d) {
-        if ((imposed >> d) & 1u) r.force_on_material[d] = 0.0;
+  // After the grid's boundary conditions of a velocity phase. A kinematic condition (fixed,
+  // roller, a friction wall's normal) wins: the body applied nothing in a component it
+  // imposed (the condition's reaction took it), so the records drop that component. A friction
+  // wall's friction does not win: it may have slowed material the body pushes back into the
+  // body (the blade's tip scraping a rough floor); the body, moving as prescribed, pushes it
+  // out again through the components no condition imposed, and that push (the floor friction
+  // the body overcomes) is part of the body's force. The records and totals are then the
+  // forces the material actually received from the body.
+  void conditions_applied(GridView<Dim>& view) {
+    if (view.imposed.empty()) return;
+    const bool record = view.phase == Phase::end_velocity;
+    if (record) {
+      for (auto& e : bodies_) e.force_on_material.setZero();
+      for (auto& r : records_) {
+        const unsigned imposed = view.imposed[static_cast<std::size_t>(r.node)];
+        for (int d = 0; d < Dim; ++d) {
+          if ((imposed >> d) & 1u) r.force_on_material[d] = 0.0;
+        }
       }
+    }
+    for (const auto& a : examined_) {
+      const unsigned imposed = view.imposed[static_cast<std::size_t>(a.node)];
+      if (imposed == 0) continue;  // no condition touched it: the correction stands
+      Vec<Dim> free_normal = a.normal;
+      for (int d = 0; d < Dim; ++d) {
+        if ((imposed >> d) & 1u) free_normal[d] = 0.0;
+      }
+      // |free_normal|^2: how much of the normal the free components can still move along.
+      const double reach = free_normal.squaredNorm();
+      Vec<Dim>& v = view.velocity[static_cast<std::size_t>(a.node)];
+      const double approach = (v - a.body_velocity).dot(a.normal);
+      if (approach >= 0.0 || reach < 1e-12) continue;
+      const Vec<Dim> push = (-approach / reach) * free_normal;
+      v += push;
+      if (record && a.record >= 0) {
+        records_[static_cast<std::size_t>(a.record)].force_on_material += a.mass * push / view.dt;
+      }
+    }
+    if (!record) return;
+    for (auto& r : records_) {
       r.normal_force = r.force_on_material.dot(r.normal);
       r.shear_force = r.force_on_material.dot(r.tangent);
       bodies_[static_cast<std::size_t>(r.body)].force_on_material += r.force_on_material;
@@ -336,6 +365,8 @@ class RigidContact {
         if (state != NodeState::separating && e.interface.hold_rotation && !view.spin.empty()) {
           view.spin[static_cast<std::size_t>(n)] = body_omega;
         }
+        examined_.push_back(
+            {n, record ? static_cast<Index>(records_.size()) : Index{-1}, m, p.normal, v_body});
         if (!record) continue;
         ContactNode<Dim> r;
         r.node = n;
@@ -356,8 +387,18 @@ class RigidContact {
     }
   }
 
+  // A node the last correction looked at, kept for conditions_applied.
+  struct ExaminedNode {
+    Index node;
+    Index record;  // into records_, or -1 in a phase that records nothing
+    double mass;
+    Vec<Dim> normal;
+    Vec<Dim> body_velocity;
+  };
+
   std::vector<Entry> bodies_;
   std::vector<ContactNode<Dim>> records_;
+  std::vector<ExaminedNode> examined_;
   bool recorded_ = false;
   bool start_of_step_correction_ = false;
   bool gap_check_ = false;

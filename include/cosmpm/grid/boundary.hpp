@@ -41,8 +41,10 @@ class BoundaryConditions {
   const FaceCondition& operator[](int face_index) const { return faces_[face_index]; }
 
   // Imposes the face condition on the updated velocity `v` of a node lying on that face and
-  // returns the components it imposed (bit d for component d). For a friction wall the
-  // removed normal velocity is the impulse that bounds the tangential one.
+  // returns the components it imposed kinematically (bit d for component d). A friction wall
+  // imposes only its normal component: the tangential ones it reduces by friction (the removed
+  // normal velocity is the impulse that bounds them), a resistance that a rigid body pushing
+  // the material along the wall overcomes (contact::RigidContact::conditions_applied).
   static unsigned apply(const FaceCondition& condition, int axis, bool upper, Vec<Dim>& v) {
     constexpr unsigned all = (1u << Dim) - 1u;
     const unsigned normal = 1u << axis;
@@ -71,7 +73,7 @@ class BoundaryConditions {
         for (int d = 0; d < Dim; ++d) {
           if (d != axis) v[d] *= scale;
         }
-        return all;
+        return normal;
       }
     }
     return 0u;

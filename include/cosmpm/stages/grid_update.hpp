@@ -4,7 +4,6 @@
 #include <cmath>
 #include <cstddef>
 #include <span>
-#include <utility>
 #include <vector>
 
 #include "cosmpm/contact/concept.hpp"
@@ -46,7 +45,7 @@ void apply_conditions(const State& s, std::vector<Vec<State::dim>>& velocity,
 }
 
 // A velocity phase: the contact law's correction (if it joins the velocity phases), then the
-// boundary conditions, which win, then the law's look at the final velocities with the
+// boundary conditions, whose imposed components win, then the law's reconciliation with the
 // components the conditions imposed.
 template <class State>
 void correct_and_apply_conditions(State& s, std::vector<Vec<State::dim>>& velocity,
@@ -57,13 +56,13 @@ void correct_and_apply_conditions(State& s, std::vector<Vec<State::dim>>& veloci
     auto view = contact_view(s, velocity, spin, dt, phase);
     s.contact.correct(view);
   }
-  if constexpr (contact::ReadsConditionedVelocities<Contact, Dim>) {
+  if constexpr (contact::ReconcilesConditions<Contact, Dim>) {
     s.imposed.assign(static_cast<std::size_t>(s.grid.node_count()), 0);
     grid::apply_boundary_conditions(s.boundary, s.grid, velocity, &s.imposed);
     if constexpr (State::rotational_dofs > 0) s.continuum.apply_rotation_conditions(s.grid, spin);
     auto view = contact_view(s, velocity, spin, dt, phase);
     view.imposed = s.imposed;
-    s.contact.conditions_applied(std::as_const(view));
+    s.contact.conditions_applied(view);
   } else {
     apply_conditions(s, velocity, spin);
   }
