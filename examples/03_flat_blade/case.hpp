@@ -24,6 +24,7 @@ struct Case {
   double density = 778.0;  // kg/m^3
   double friction_angle_deg = 26.0;
   double dilatancy_angle_deg = 2.0;  // the paper also runs 10 and 26
+  double dilatancy_cutoff = 0.0;     // plastic shear strain; 0: none (the paper)
   double cohesion = 0.0;             // Pa
   double wall_friction_deg = 14.0;   // corn on steel
   // The rig floor under the soil: "fixed" (the paper's: no velocity at the floor nodes) or
@@ -100,6 +101,7 @@ struct Case {
     if (cone != "default" && cone != (is_polar() ? "plane-strain-per-angle" : "plane-strain")) {
       name << "_" << cone;
     }
+    if (dilatancy_cutoff > 0.0) name << "_cutoff" << dilatancy_cutoff;
     if (material == "drucker-prager") name << "_dp";
     if (shape != "linear") name << "_" << shape;
     if (integrator != "musl") name << "_" << integrator;
@@ -125,6 +127,10 @@ inline void declare_options(Options& o, Case& c) {
          "friction angle (the Sokolovski reference is verified up to 60 deg)");
   o.real("psi", c.dilatancy_angle_deg, {0.0, 60.0, Bounds::closed}, "deg",
          "dilatancy angle, at most --phi (the paper: 2, 10, 26)");
+  o.real("dilatancy-cutoff", c.dilatancy_cutoff, {0.0, 1e3, Bounds::closed}, "",
+         "Mohr-Coulomb only: the plastic shear strain from which the flow is isochoric (psi = "
+         "0), a dilatancy cut-off at the critical state; 0: none (the paper's perfect "
+         "plasticity)");
   o.real("cohesion", c.cohesion, {0.0, 1e9, Bounds::closed}, "Pa", "cohesion c");
   o.real("delta", c.wall_friction_deg, {0.0, 60.0, Bounds::closed}, "deg",
          "soil-blade friction angle, at most --phi");
@@ -295,6 +301,9 @@ inline void validate(const Options& o, Case& c) {
   }
   if (c.polar && c.antilocking != "none") {
     o.fail("antilocking", "applies to nonpolar soil only (--polar true); leave it at none");
+  }
+  if (c.dilatancy_cutoff > 0.0 && c.material != "mohr-coulomb") {
+    o.fail("dilatancy-cutoff", "is implemented for --material mohr-coulomb only; leave it at 0");
   }
   if (c.dilatancy_angle_deg > c.friction_angle_deg) {
     o.fail("psi", "exceeds " + o.describe("phi") + "; lower --psi or raise --phi");

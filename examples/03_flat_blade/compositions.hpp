@@ -170,6 +170,10 @@ struct Outcome {
   double travel = 0.0;       // blade travel reached, m
   long stray_particles = 0;  // that left the rig (--stray-particles freeze or remove)
   double stray_mass = 0.0;   // kg/m
+  // At the end: particles inside the blade or behind its front face, below its top, which
+  // the blade passed over instead of pushing (the paper's fixed floor holds the bottom cell).
+  long overrun_particles = 0;
+  double overrun_mass = 0.0;  // kg/m
 };
 
 // What the run needs from main: the options (for messages and the run's parameters), the

@@ -126,6 +126,10 @@ int main(int argc, char** argv) {
                                                  : "nonpolar (Mohr-Coulomb)",
                 c.soil_depth * 1000, c.cells_x, c.cells_y, c.dilatancy_angle_deg,
                 c.wall_friction_deg);
+    if (c.dilatancy_cutoff > 0.0) {
+      std::printf("  dilatancy cut-off: psi = 0 from a plastic shear strain of %g\n",
+                  c.dilatancy_cutoff);
+    }
     if (c.floor == "friction") {
       std::printf("  rig floor: Coulomb friction, %g deg\n", c.floor_friction_deg);
     }
@@ -163,6 +167,10 @@ int main(int argc, char** argv) {
           "stopped by %s at %.2f mm of travel (t = %.6g s, step %ld); checkpoint written.\n"
           "Continue with the same options and --restart true.\n",
           stop.signal_name(), o.travel * 1000, static_cast<double>(o.steps) * o.time_step, o.steps);
+      if (o.overrun_particles > 0) {
+        std::printf("  %ld particles (%.3g kg/m) ended inside or behind the blade, passed over\n",
+                    o.overrun_particles, o.overrun_mass);
+      }
       std::printf("results in %s: %s\n", out.c_str(), written_list(*folder).c_str());
       return stop.exit_status();
     }
@@ -190,7 +198,9 @@ int main(int argc, char** argv) {
                                                            "blade_speed_m_per_s",
                                                            "cutting_start_s",
                                                            "stray_particles",
-                                                           "stray_mass_kg_per_m"});
+                                                           "stray_mass_kg_per_m",
+                                                           "overrun_particles",
+                                                           "overrun_mass_kg_per_m"});
       summary.write_row({c.soil_depth,
                          static_cast<double>(c.cells_x),
                          static_cast<double>(c.cells_y),
@@ -212,7 +222,9 @@ int main(int argc, char** argv) {
                          c.blade_speed,
                          c.equilibrium_time,
                          static_cast<double>(o.stray_particles),
-                         o.stray_mass});
+                         o.stray_mass,
+                         static_cast<double>(o.overrun_particles),
+                         o.overrun_mass});
     }
     std::printf("  %ld particles, %ld steps of %.3g s, %.1f s of computing\n", o.particles, o.steps,
                 o.time_step, o.run_seconds);

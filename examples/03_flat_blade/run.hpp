@@ -62,8 +62,13 @@ template <class Model>
 Model make_model(const Case& c) {
   using material::DruckerPragerMatching;
   if constexpr (std::is_same_v<Model, MohrCoulomb>) {
-    return Model(c.youngs_modulus, c.poisson_ratio, c.friction_angle_deg, c.dilatancy_angle_deg,
-                 c.cohesion);
+    material::MohrCoulombParameters p{.youngs_modulus = c.youngs_modulus,
+                                      .poisson_ratio = c.poisson_ratio,
+                                      .friction_angle_deg = c.friction_angle_deg,
+                                      .dilatancy_angle_deg = c.dilatancy_angle_deg,
+                                      .cohesion = c.cohesion};
+    if (c.dilatancy_cutoff > 0.0) p.dilatancy_cutoff_strain = c.dilatancy_cutoff;
+    return Model(p);
   } else if constexpr (std::is_same_v<Model, DruckerPrager>) {
     return Model(c.youngs_modulus, c.poisson_ratio, c.friction_angle_deg, c.dilatancy_angle_deg,
                  c.cohesion, cone_of(c, DruckerPragerMatching::plane_strain));
@@ -367,6 +372,17 @@ Outcome run(const Case& c, RunContext& context,
   outcome.travel = reached;
   outcome.stray_particles = static_cast<long>(sim.stray_particles().count);
   outcome.stray_mass = sim.stray_particles().mass;
+  {
+    const auto& final_blade = sim.contact().body(blade_body);
+    const auto& x = sim.particles().template get<particles::field::Position<2>>();
+    const auto& mass = sim.particles().template get<particles::field::Mass>();
+    for (std::size_t p = 0; p < x.size(); ++p) {
+      if (x[p][0] < final_blade.upper_bound()[0] && x[p][1] < final_blade.upper_bound()[1]) {
+        ++outcome.overrun_particles;
+        outcome.overrun_mass += mass[p];
+      }
+    }
+  }
   if (!stopped && !state.profile_written) {
     // check_promises rules this out; a failure here is a bug, not bad input.
     throw Error("internal: the blade stress profile at --profile-at was not taken");

@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <array>
 #include <cmath>
+#include <limits>
 #include <random>
 #include <utility>
 #include <vector>
@@ -245,6 +246,53 @@ TEST_CASE("MohrCoulomb: the plastic strain follows the plastic potential (dilata
       CHECK(state.plastic_shear_strain ==
             doctest::Approx(std::sqrt(2 * dev.squaredNorm())).epsilon(1e-8));
     }
+  }
+}
+
+TEST_CASE("MohrCoulomb: past the dilatancy cut-off the flow is isochoric") {
+  // A cut-off at a plastic shear strain of 0.1: below it the model flows as psi = 26 deg, at
+  // and above it exactly as psi = 0 (the same yield surface); without a cut-off, as psi at any
+  // strain.
+  cosmpm::material::MohrCoulombParameters p{.youngs_modulus = kE,
+                                            .poisson_ratio = kNu,
+                                            .friction_angle_deg = kPhi,
+                                            .dilatancy_angle_deg = 26.0};
+  const MohrCoulomb<double> dilating(p);
+  p.dilatancy_cutoff_strain = 0.1;
+  const MohrCoulomb<double> with_cutoff(p);
+  p.dilatancy_angle_deg = 0.0;
+  p.dilatancy_cutoff_strain.reset();
+  const MohrCoulomb<double> isochoric(p);
+  const SymTensor2D<double> old(-1e3, -1e3, -1e3, 0);
+  const SymTensor2D<double> de =
+      testing::increment_to(dilating.shear_modulus(), dilating.lame_lambda(), old,
+                            testing::rotate(SymTensor2D<double>(-10e3, -40e3, -20e3, 0), 0.3));
+  const auto update = [&](const MohrCoulomb<double>& model, double strain_so_far) {
+    SymTensor2D<double> stress = old;
+    PlasticState state;
+    state.plastic_shear_strain = strain_so_far;
+    REQUIRE(model.update_region(stress, state, de) == MohrCoulombRegion::plane);
+    return stress;
+  };
+  for (const double strain_so_far : {0.0, 0.0999}) {
+    CHECK(update(with_cutoff, strain_so_far) == update(dilating, strain_so_far));
+  }
+  for (const double strain_so_far : {0.1, 5.0}) {
+    CHECK(update(with_cutoff, strain_so_far) == update(isochoric, strain_so_far));
+    CHECK(update(dilating, strain_so_far) != update(isochoric, strain_so_far));
+  }
+  // The isochoric return removes no volume: tr(d eps_p) = 0.
+  SymTensor2D<double> stress = old;
+  PlasticState state;
+  state.plastic_shear_strain = 0.2;
+  with_cutoff.update(stress, state, de);
+  const Eigen::Vector3d eps = principal(plastic_strain(with_cutoff, old, stress, de));
+  CHECK(std::abs(eps.sum()) <= 1e-9 * eps.cwiseAbs().maxCoeff());
+  // A cut-off must be positive and finite.
+  for (const double bad : {0.0, -0.1, std::numeric_limits<double>::infinity()}) {
+    p.dilatancy_cutoff_strain = bad;
+    CHECK_THROWS_WITH_AS(MohrCoulomb<double>{p}, doctest::Contains("dilatancy_cutoff_strain"),
+                         cosmpm::Error);
   }
 }
 

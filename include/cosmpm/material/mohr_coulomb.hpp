@@ -17,6 +17,7 @@
 #include <algorithm>
 #include <array>
 #include <cmath>
+#include <limits>
 #include <optional>
 #include <type_traits>
 
@@ -42,6 +43,11 @@ struct MohrCoulombParameters {
   double cohesion = 0.0;                       // c (Pa), >= 0
   // The largest principal stress allowed (Pa), in [0, c cot(phi)]; none: the apex c cot(phi).
   std::optional<double> tension_cutoff = std::nullopt;
+  // Dilatancy cut-off: the plastic shear strain (state.plastic_shear_strain, sqrt(2 e:e) of the
+  // plastic strain deviator) from which the flow is isochoric (psi = 0), as a dense granular
+  // soil stops dilating at its critical state; in simple shear the volume then grows by about
+  // this times tan(psi). > 0; none: psi throughout (perfect plasticity dilates without end).
+  std::optional<double> dilatancy_cutoff_strain = std::nullopt;
 };
 
 template <class T = double, int Dim = 2>
@@ -85,6 +91,13 @@ class MohrCoulomb {
     }
     return_ =
         detail::MohrCoulombReturn<T>(elastic_, k, m, 2 * cohesion * std::sqrt(k), apex, cutoff);
+    if (parameters.dilatancy_cutoff_strain) {
+      require_positive("MohrCoulomb", "dilatancy_cutoff_strain",
+                       *parameters.dilatancy_cutoff_strain);
+      dilatancy_cutoff_strain_ = *parameters.dilatancy_cutoff_strain;
+      isochoric_return_ = detail::MohrCoulombReturn<T>(elastic_, k, T(1),
+                                                       2 * cohesion * std::sqrt(k), apex, cutoff);
+    }
   }
   // Positional, for compatibility: prefer the parameters by name (phi and psi cannot swap).
   MohrCoulomb(T youngs_modulus, T poisson_ratio, T friction_angle_deg, T dilatancy_angle_deg,
@@ -106,6 +119,8 @@ class MohrCoulomb {
   T cohesion() const { return T(parameters_.cohesion); }
   T apex_stress() const { return return_.apex(); }       // c cot(phi): all principal stresses
   T tension_cutoff() const { return return_.cutoff(); }  // largest principal stress allowed
+  // The plastic shear strain from which the flow is isochoric; infinity: none.
+  double dilatancy_cutoff_strain() const { return dilatancy_cutoff_strain_; }
 
   // f = (s1 - s3) + (s1 + s3) sin(phi) - 2 c cos(phi) in Pa; <= 0 inside. With a tension
   // cut-off below the apex, the larger of f and s1 - cut-off.
@@ -201,7 +216,10 @@ class MohrCoulomb {
     }
     T r1, r2, r3, gamma;
     Mat3 sorted_map;
-    const MohrCoulombRegion region = return_.template plastic_return<WithTangent, Cutoff>(
+    // The same yield surface either way; only the flow changes at the dilatancy cut-off.
+    const auto& flow =
+        state.plastic_shear_strain >= dilatancy_cutoff_strain_ ? isochoric_return_ : return_;
+    const MohrCoulombRegion region = flow.template plastic_return<WithTangent, Cutoff>(
         split.s1(), split.s2(), split.s3(), f, r1, r2, r3, gamma,
         WithTangent ? &sorted_map : nullptr);
     stress = split.back(r1, r2, r3);
@@ -223,6 +241,8 @@ class MohrCoulomb {
   T sin_phi_{};
   T cos_phi_{};
   detail::MohrCoulombReturn<T> return_;
+  double dilatancy_cutoff_strain_ = std::numeric_limits<double>::infinity();
+  detail::MohrCoulombReturn<T> isochoric_return_;  // psi = 0, past the dilatancy cut-off
 };
 
 static_assert(ConstitutiveModel<MohrCoulomb<double>>);
