@@ -245,7 +245,14 @@ def plot_biaxial(runs, out):
         c = read_csv(os.path.join(run, "biaxial.csv"))
         s = summary(run)
         strain = [100 * e for e in c["axial_strain"]]
-        name = (f"mu = {s['friction']:g}, s3 = {s['confining_stress_Pa'] / 1000:g} kPa: peak "
+        grains = f"mu = {s['friction']:g}"
+        if "rolling_friction" in s:  # older summaries lack the shape and the rolling friction
+            grains += f", mu_r = {s['rolling_friction']:g}, aspect {s['aspect']:g}"
+            if s["packing_friction"] != s["friction"]:
+                grains += f", packed at mu = {s['packing_friction']:g}"
+        else:
+            grains = os.path.basename(os.path.normpath(run))
+        name = (f"{grains}, s3 = {s['confining_stress_Pa'] / 1000:g} kPa: peak "
                 f"{s['peak_angle_deg']:.1f}, critical {s['critical_angle_deg']:.1f} deg")
         ax1.plot(strain, c["friction_angle_deg"], color=f"C{i}", lw=0.8, label=name)
         ax1.axhline(s["critical_angle_deg"], color=f"C{i}", ls=":", lw=1)

@@ -6,9 +6,9 @@
 //   example_03_flat_blade --method dem --experiment biaxial [--particles 2000] ...
 //   example_03_flat_blade --method dem --help
 //
-// Flat blade: corn grains (two-disk clumps, Table 1's micro properties) are rained into the
-// rig from a fixed height, settled, trimmed to the layer depth h, and the blade is pushed
-// through them at 10 mm/s. Writes to out/flat_blade_dem/<tag>/ (or --out): packing.csv
+// Flat blade: corn grains (two-disk clumps with Table 1's micro properties, calibrated) are
+// rained into the rig from a fixed height, settled, trimmed to the layer depth h, and the blade
+// is pushed through them at 10 mm/s. Writes to out/flat_blade_dem/<tag>/ (or --out): packing.csv
 // (porosity, bulk density), forces.csv (draft and vertical force of the blade on the soil
 // against travel, per metre of width), blade_stress.csv (normal and shear stress on the blade
 // over 18-22 mm of travel, the paper's estimate and the binned one: its Fig. 10),
@@ -45,15 +45,22 @@ struct Config {
   double particle_stiffness = 420e3;  // k_n = k_s, N/m
   double particle_density = 855.0;    // kg/m^3
   double particle_friction = 0.1;
-  // Grains: two-disk clumps (docs/theory/dem.md, "Grain shape"), 8-12 mm long, 0.6 as wide;
-  // "disk" gives disks of 8-12 mm diameter instead.
+  // Grains: two-disk clumps (docs/theory/dem.md, "Grain shape and the calibration"), 8-12 mm
+  // long, 0.6 as wide; "disk" gives disks of 8-12 mm diameter instead. Calibrated to the corn
+  // (docs/validation.md, "DEM"): Table 1's k and mu, rolling resistance 0.2 for the kernels'
+  // angularity and a dense packing; biaxial peak 25-27 deg against the corn's 26.
   std::string shape = "clump";
   double size_min = 0.008;        // m
   double size_max = 0.012;        // m
   double aspect = 0.6;            // clump width / length
-  double rolling_friction = 0.0;  // mu_r of dem::RollingResistance (0: the paper's PFC2D model)
-  double local_damping = 0.7;     // PFC's default
-  double viscous_damping = 0.0;   // fraction of critical, normal and shear
+  double rolling_friction = 0.2;  // mu_r of dem::RollingResistance (0: none, as PFC2D 2.0)
+  // Packing friction (PFC's practice for a dense packing): the grains are rained and settled
+  // (biaxial: compacted) with this particle friction and no rolling resistance, and the
+  // calibrated law above takes over before the layer is trimmed (biaxial: sheared).
+  // `--packing-friction none`: the calibrated law throughout (a looser packing).
+  std::optional<double> packing_friction = 0.0;
+  double local_damping = 0.7;    // PFC's default
+  double viscous_damping = 0.0;  // fraction of critical, normal and shear
   // Walls: PFC walls with the particles' stiffness; the blade steel (the continuum's 14 deg,
   // Table 1); the floor rough, as the MPM's fixed bottom (with a steel floor the wedge slides
   // along it instead of failing through the corn: 18 % less draft at h = 150 mm); the rig's
@@ -106,13 +113,14 @@ struct Config {
   std::string tag() const {
     std::ostringstream name;
     if (experiment == "biaxial") {
-      name << "biaxial_" << shape << "_s" << std::lround(confining_stress) << "_mu"
-           << particle_friction;
+      name << "biaxial_" << shape << "_s" << std::lround(confining_stress);
     } else {
-      name << "h" << std::lround(depth * 1000) << "_" << shape << "_mu" << particle_friction;
-      if (rolling_friction > 0.0) name << "_rolling" << rolling_friction;
-      name << "_travel" << std::lround(travel * 1000);
+      name << "h" << std::lround(depth * 1000) << "_" << shape;
     }
+    name << "_mu" << particle_friction;
+    if (rolling_friction > 0.0) name << "_rolling" << rolling_friction;
+    if (packing_friction) name << "_packed" << *packing_friction;
+    if (experiment != "biaxial") name << "_travel" << std::lround(travel * 1000);
     return name.str();
   }
   double blade_face() const { return blade_start + blade_thickness; }
@@ -168,6 +176,13 @@ inline bool parse(Config& c, const std::vector<std::string>& args) {
   real("aspect", c.aspect);
   real("local-damping", c.local_damping);
   real("rolling-friction", c.rolling_friction);
+  set["packing-friction"] = [&c](const std::string& v, const std::string& w) {
+    if (v == "none") {
+      c.packing_friction.reset();
+    } else {
+      c.packing_friction = number(v, w);
+    }
+  };
   real("viscous-damping", c.viscous_damping);
   real("wall-stiffness", c.wall_stiffness);
   real("delta", c.blade_friction_deg);
@@ -250,6 +265,8 @@ inline void validate(const Config& c) {
   require_positive(where, "density", c.particle_density);
   cosmpm::require_non_negative(where, "friction", c.particle_friction);
   cosmpm::require_non_negative(where, "rolling-friction", c.rolling_friction);
+  if (c.packing_friction)
+    cosmpm::require_non_negative(where, "packing-friction", *c.packing_friction);
   require_positive(where, "size-min", c.size_min);
   require_in_range(where, "size-max", c.size_max, c.size_min, 1.0, Bounds::left_closed);
   require_in_range(where, "aspect", c.aspect, 0.0, 1.0, Bounds::right_closed);
@@ -333,7 +350,8 @@ void write_particles(const fs::path& path, const Sim& sim, const std::vector<dou
 }
 
 template <class Law>
-int run_flat_blade(const Config& c, const fs::path& out, const Law& contact_law) {
+int run_flat_blade(const Config& c, const fs::path& out, const Law& contact_law,
+                   const std::optional<Law>& packing_law) {
   using namespace cosmpm;
   using Sim = dem::Simulation<Law, dem::LocalDamping>;
   const auto wall_start = std::chrono::steady_clock::now();
@@ -377,6 +395,7 @@ int run_flat_blade(const Config& c, const fs::path& out, const Law& contact_law)
       contact::RigidBody<2>::box(Vec<2>(c.blade_start, c.blade_height), Vec<2>(face, c.rig_height)),
       smooth);
   const double dt = c.time_step_fraction * sim.critical_time_step();
+  if (packing_law) sim.set_law(*packing_law);
   std::printf("DEM flat blade: h = %.0f mm, %ld %s (%ld disks), dt = %.3g s\n", c.depth * 1000,
               static_cast<long>(sim.assembly().body_count()),
               c.shape == "clump" ? "two-disk clumps" : "disks",
@@ -404,6 +423,7 @@ int run_flat_blade(const Config& c, const fs::path& out, const Law& contact_law)
                   " m (raise --particles, now " + std::to_string(count) + ")");
     }
   }
+  if (packing_law) sim.set_law(contact_law);
   const Index removed = dem::trim_above(sim.assembly(), c.depth);
   const auto resettled = dem::settle(sim, dt, c.resettle_time, c.settle_ratio, 0.1);
   const Vec<2> lower(face + 0.05, 0.02), upper(c.rig_length - 0.05, c.depth - 0.03);
@@ -580,7 +600,11 @@ int run_flat_blade(const Config& c, const fs::path& out, const Law& contact_law)
                                                 "speed_m_per_s",
                                                 "travel_m",
                                                 "average_from_m",
-                                                "average_to_m"});
+                                                "average_to_m",
+                                                "friction",
+                                                "aspect",
+                                                "rolling_friction",
+                                                "packing_friction"});
     summary.write_row({c.depth,
                        static_cast<double>(sim.assembly().body_count()),
                        static_cast<double>(sim.assembly().element_count()),
@@ -603,7 +627,11 @@ int run_flat_blade(const Config& c, const fs::path& out, const Law& contact_law)
                        c.speed,
                        c.travel,
                        c.average_from,
-                       c.average_to});
+                       c.average_to,
+                       c.particle_friction,
+                       c.shape == "clump" ? c.aspect : 1.0,
+                       c.rolling_friction,
+                       c.packing_friction.value_or(c.particle_friction)});
   }
   std::printf("  %ld cutting steps, %.1f s packing + %.1f s cutting\n",
               static_cast<long>(sim.step_count() - steps_before), packing_seconds, cut_seconds);
@@ -623,7 +651,8 @@ int run_flat_blade(const Config& c, const fs::path& out, const Law& contact_law)
 }
 
 template <class Law>
-int run_biaxial(const Config& c, const fs::path& out, const Law& contact_law) {
+int run_biaxial(const Config& c, const fs::path& out, const Law& contact_law,
+                const std::optional<Law>& packing_law) {
   using namespace cosmpm;
   dem::BiaxialSettings s;
   s.particles = c.biaxial_particles;
@@ -638,7 +667,8 @@ int run_biaxial(const Config& c, const fs::path& out, const Law& contact_law) {
   std::int64_t calls = 0;
   const auto wall_start = std::chrono::steady_clock::now();
   const auto result = dem::biaxial_test(
-      contact_law, grains(c), s, [&](double fraction) { progress.update(fraction, ++calls); });
+      contact_law, grains(c), s, [&](double fraction) { progress.update(fraction, ++calls); },
+      packing_law);
   progress.finish(1.0, calls);
   const double seconds =
       std::chrono::duration<double>(std::chrono::steady_clock::now() - wall_start).count();
@@ -649,14 +679,17 @@ int run_biaxial(const Config& c, const fs::path& out, const Law& contact_law) {
       curve.write_row(
           {p.axial_strain, p.volumetric_strain, p.sigma1, p.sigma3, p.friction_angle_deg});
     }
-    io::CsvWriter summary(out / "summary.csv",
-                          {"particles", "friction", "confining_stress_Pa", "peak_angle_deg",
-                           "peak_strain", "critical_angle_deg", "critical_dilatancy", "porosity",
-                           "compacted", "steps", "run_seconds"});
+    io::CsvWriter summary(
+        out / "summary.csv",
+        {"particles", "friction", "confining_stress_Pa", "peak_angle_deg", "peak_strain",
+         "critical_angle_deg", "critical_dilatancy", "porosity", "compacted", "steps",
+         "run_seconds", "aspect", "rolling_friction", "packing_friction"});
     summary.write_row({static_cast<double>(result.particles), c.particle_friction,
                        c.confining_stress, result.peak_angle_deg, result.peak_strain,
                        result.critical_angle_deg, result.critical_dilatancy, result.porosity,
-                       result.compacted ? 1.0 : 0.0, static_cast<double>(result.steps), seconds});
+                       result.compacted ? 1.0 : 0.0, static_cast<double>(result.steps), seconds,
+                       c.shape == "clump" ? c.aspect : 1.0, c.rolling_friction,
+                       c.packing_friction.value_or(c.particle_friction)});
   }
   std::printf("DEM biaxial test: %ld %s, mu = %g, s3 = %.0f Pa%s\n",
               static_cast<long>(result.particles), c.shape == "clump" ? "two-disk clumps" : "disks",
@@ -699,15 +732,19 @@ inline std::optional<int> run_if_requested(int& argc, char** argv) {
     const fs::path out = c.output_directory.empty() ? fs::path("out/flat_blade_dem") / c.tag()
                                                     : fs::path(c.output_directory);
     fs::create_directories(out);
-    auto run = [&](const auto& contact_law) {
-      return c.experiment == "biaxial" ? run_biaxial(c, out, contact_law)
-                                       : run_flat_blade(c, out, contact_law);
+    auto run = [&](const auto& contact_law, const auto& packing_law) {
+      return c.experiment == "biaxial" ? run_biaxial(c, out, contact_law, packing_law)
+                                       : run_flat_blade(c, out, contact_law, packing_law);
     };
+    Config packing = c;  // the packing law: the packing friction, no rolling resistance
+    packing.particle_friction = c.packing_friction.value_or(c.particle_friction);
     if (c.rolling_friction > 0.0) {
+      using Rolling = cosmpm::dem::RollingResistance<cosmpm::dem::LinearSpring>;
       return run(
-          cosmpm::dem::RollingResistance<cosmpm::dem::LinearSpring>(law(c), c.rolling_friction));
+          Rolling(law(c), c.rolling_friction),
+          c.packing_friction ? std::optional<Rolling>(Rolling(law(packing), 0.0)) : std::nullopt);
     }
-    return run(law(c));
+    return run(law(c), c.packing_friction ? std::optional(law(packing)) : std::nullopt);
   } catch (const cosmpm::Error& error) {
     std::fprintf(stderr, "\nerror: %s\n", error.what());
     return 1;

@@ -14,6 +14,7 @@
 #include <cmath>
 #include <cstdint>
 #include <functional>
+#include <optional>
 #include <string>
 #include <vector>
 
@@ -63,9 +64,12 @@ struct BiaxialResult {
   Index particles = 0;
 };
 
+// `compaction_law`, if given, acts during the isotropic compaction (PFC's practice: compact
+// with low friction for a denser sample), and `law` during the shearing.
 template <class Law>
 BiaxialResult biaxial_test(const Law& law, const Grains& grains, const BiaxialSettings& s,
-                           const std::function<void(double)>& progress = {}) {
+                           const std::function<void(double)>& progress = {},
+                           const std::optional<Law>& compaction_law = std::nullopt) {
   const char* where = "dem::biaxial_test";
   grains.validate(where);
   require_in_range(where, "particles", static_cast<double>(s.particles), 16.0, 1e8, Bounds::closed);
@@ -101,6 +105,7 @@ BiaxialResult biaxial_test(const Law& law, const Grains& grains, const BiaxialSe
   const Index left = sim.add_plane_wall("left", Vec<2>(0, 0), Vec<2>(1, 0), smooth);
   const Index right = sim.add_plane_wall("right", Vec<2>(width, 0), Vec<2>(-1, 0), smooth);
   const double dt = s.time_step_fraction * sim.critical_time_step();
+  if (compaction_law) sim.set_law(*compaction_law);
   const double r_min = sim.assembly().min_radius();
   const double wall_stiffness = Law::time_step_stiffness(law.wall_constants(smooth), r_min);
 
@@ -155,6 +160,7 @@ BiaxialResult biaxial_test(const Law& law, const Grains& grains, const BiaxialSe
       Vec<2>(sim.walls()[right].point[0] - inset, sim.walls()[top].point[1] - inset), 0.2 * r_min);
 
   // Shearing at constant platen speed, sides servo-controlled.
+  if (compaction_law) sim.set_law(law);
   const double h0 = span(bottom, top);
   const double area0 = h0 * span(left, right);
   const double platen_speed = 0.5 * s.strain_rate * h0;

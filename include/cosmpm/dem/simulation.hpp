@@ -80,6 +80,17 @@ class Simulation {
   Assembly& assembly() { return assembly_; }
   const Assembly& assembly() const { return assembly_; }
   const Law& law() const { return law_; }
+  // Replaces the contact law from the next step on: PFC's practice of depositing or compacting
+  // a packing with low friction and then shearing it with the calibrated law. Contact histories
+  // are kept; the new law caps them at its own limits in the next step.
+  void set_law(Law law) {
+    law_ = std::move(law);
+    wall_constants_.clear();
+    for (Index w = 0; w < walls_.size(); ++w) {
+      wall_constants_.push_back(law_.wall_constants(walls_[w].material));
+    }
+    critical_ = 0.0;  // the time-step estimate depends on the law's stiffnesses
+  }
   Damping& damping() { return damping_; }
   const Damping& damping() const { return damping_; }
   Parameters& parameters() { return parameters_; }
