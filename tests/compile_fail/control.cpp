@@ -9,6 +9,9 @@ struct WithAdvance {
 };
 using Right = Simulation<2, shape::CubicBSpline, continuum::Classical<material::MohrCoulomb<>>,
                          WithAdvance, integrator::MUSL, transfer::APIC>;
+using Right3D =
+    Simulation<3, shape::QuadraticBSpline, continuum::Classical<material::MohrCoulomb<double, 3>>,
+               contact::SingleField, integrator::USF>;
 int main() {
-  return sizeof(Right) > 0 ? 0 : 1;
+  return sizeof(Right) + sizeof(Right3D) > 0 ? 0 : 1;
 }

@@ -182,6 +182,32 @@ TEST_CASE_TEMPLATE("Stencil<3>: compiles and keeps partition of unity and linear
   }
 }
 
+// Next to the edges and corners of the 3D box: points within one cell of two or three faces
+// (each axis independently in its first cell, its last cell or anywhere), where the folded
+// ghost nodes of two or three axes meet. Same identities and tolerances as above.
+TEST_CASE_TEMPLATE("Stencil<3>: partition of unity and reproduction next to edges and corners", K,
+                   Linear, GIMP, QuadraticBSpline, CubicBSpline) {
+  const auto grid = test_grid<3>();
+  std::mt19937_64 rng(2026u);
+  std::uniform_real_distribution<double> unit(0.0, 1.0);
+  int near_edge_or_corner = 0;
+  for (int i = 0; i < 600; ++i) {
+    Vec<3> x;
+    int faces = 0;
+    for (int d = 0; d < 3; ++d) {
+      const int where = static_cast<int>(rng() % 3);  // 0: first cell, 1: last cell, 2: anywhere
+      const double cells = static_cast<double>(grid.cells(d));
+      const double xi = where == 0 ? unit(rng) : where == 1 ? cells - unit(rng) : unit(rng) * cells;
+      faces += where < 2 ? 1 : 0;
+      x[d] = grid.origin()[d] + xi * grid.cell_size()[d];
+    }
+    near_edge_or_corner += faces >= 2 ? 1 : 0;
+    check_stencil<3, K>(grid, x, Vec<3>::Constant(Case<K>::half_width));
+  }
+  // Expected 20/27 of the points (444): 8/27 next to a corner, 12/27 next to an edge only.
+  CHECK(near_edge_or_corner > 400);
+}
+
 // Only GIMP needs the particle size; the overload without it is not offered for GIMP.
 template <class S>
 concept ComputesWithoutHalfWidth = requires(S s, const cosmpm::grid::Grid<2>& g, const Vec<2>& x) {

@@ -1,10 +1,13 @@
 #pragma once
-// The classical (nonpolar) continuum in 2D plane strain: which fields a particle carries, how
-// its stress is updated from the velocity gradient of a step, and how it loads the grid. It
+// The classical (nonpolar) continuum, in 2D plane strain or in 3D (the model's dimension,
+// material::dimension_of): which fields a particle carries, how its stress is updated from the
+// velocity gradient of a step, and how it loads the grid. It
 // has no degrees of freedom besides the translations, so every rotational term of the
 // continuum contract (continuum/concept.hpp) is empty. AntiLocking (continuum/
 // antilocking.hpp) chooses how the volumetric strain rate is formed:
 //   continuum::Classical<material::MohrCoulomb<>, antilocking::FBar>
+//   continuum::Classical<material::LinearElastic<double, 3>>            (3D)
+// Stress and strain are in the component order of material/stress_space.hpp.
 #include <array>
 #include <limits>
 #include <span>
@@ -17,11 +20,14 @@
 #include "cosmpm/core/types.hpp"
 #include "cosmpm/grid/grid.hpp"
 #include "cosmpm/material/concept.hpp"
+#include "cosmpm/material/stress_space.hpp"
 
 namespace cosmpm::continuum {
 
 template <material::ConstitutiveModel Model, class AntiLocking = antilocking::None>
-requires(!Model::is_cosserat && material::dimension_of<Model> == 2) class Classical {
+requires(!Model::is_cosserat) class Classical {
+  static constexpr int n = material::symmetric_components<material::dimension_of<Model>>;
+
  public:
   using model_type = Model;
   using antilocking_type = AntiLocking;
@@ -29,7 +35,7 @@ requires(!Model::is_cosserat && material::dimension_of<Model> == 2) class Classi
   using strain_type = typename Model::strain_type;
   using state_type = typename Model::state_type;
   static constexpr bool is_cosserat = false;
-  static constexpr int dim = 2;
+  static constexpr int dim = material::dimension_of<Model>;
   static constexpr int rotational_dofs = 0;
   static constexpr const char* name() { return "classical"; }
 
@@ -47,28 +53,32 @@ requires(!Model::is_cosserat && material::dimension_of<Model> == 2) class Classi
 
   // Objective (Jaumann) update for a step with velocity gradient L: rotate the old stress by
   // the spin, then let the model integrate the strain increment.
-  static void update_stress(const Model& model, const rates_type<2>& rates, double dt,
+  static void update_stress(const Model& model, const rates_type<dim>& rates, double dt,
                             stress_type& stress, state_type& state, strain_type& strain) {
     objective_update<Classical>(model, rates, dt, stress, state, strain);
   }
 
   // update_stress in parts, for callers that hand the model many points in one call
   // (material::update_batch): the rotation, returning the increment, and the accumulation.
-  static strain_type rotate_and_increment(const rates_type<2>& rates, double dt,
+  static strain_type rotate_and_increment(const rates_type<dim>& rates, double dt,
                                           stress_type& stress) {
     const auto values = rotate_and_increment_values(rates.velocity_gradient, dt, stress);
     strain_type increment;
-    for (int c = 0; c < 4; ++c) increment[c] = values[c];
+    for (int c = 0; c < n; ++c) increment[c] = values[c];
     return increment;
   }
 
-  // Plane strain: the zz increment is zero, so the zz strain stays as it is. Strain and
-  // increment are indexable by the four stress components.
+  // Plane strain: the zz increment is zero, so the zz strain stays as it is; in 3D every
+  // component accumulates. Strain and increment are indexable by the stress components.
   template <class Strain, class Increment>
   COSMPM_ALWAYS_INLINE static void accumulate_strain(Strain& strain, const Increment& increment) {
-    strain[0] += increment[0];
-    strain[1] += increment[1];
-    strain[3] += increment[3];
+    if constexpr (dim == 2) {
+      strain[0] += increment[0];
+      strain[1] += increment[1];
+      strain[3] += increment[3];
+    } else {
+      for (int c = 0; c < n; ++c) strain[c] += increment[c];
+    }
   }
 
   // Whether the model updates several points at once on packs of their components (the
@@ -78,25 +88,37 @@ requires(!Model::is_cosserat && material::dimension_of<Model> == 2) class Classi
   static constexpr bool updates_values = material::HasPackedUpdate<Model, Value>;
 
   // update_stress for W particles at once: lane l of every value belongs to particle l, L the
-  // velocity gradient, `strain` the accumulated strain (component 2, zz, is not touched).
+  // velocity gradient, `strain` the accumulated strain (plane strain: component 2, zz, is not
+  // touched).
   template <class Value>
   requires updates_values<Value> COSMPM_ALWAYS_INLINE static void update_stress_values(
-      const Model& model, const std::array<std::array<Value, 2>, 2>& L, double dt,
-      std::array<Value, 4>& stress, std::array<Value, 4>& strain) {
-    const std::array<Value, 4> increment = rotate_and_increment_values(L, dt, stress);
+      const Model& model, const std::array<std::array<Value, dim>, dim>& L, double dt,
+      std::array<Value, n>& stress, std::array<Value, n>& strain) {
+    const std::array<Value, n> increment = rotate_and_increment_values(L, dt, stress);
     model.update_values(stress, increment);
     accumulate_strain(strain, increment);
   }
 
   // The rotation of the stress by the step's spin (in place) and the strain increment, on an
   // Eigen matrix L and vector stress or on arrays of packs: the one place both are written.
+  // The increment is the symmetric part of L dt, tensor shear (stress_space.hpp).
   template <class Gradient, class Stress>
   COSMPM_ALWAYS_INLINE static auto rotate_and_increment_values(const Gradient& L, double dt,
                                                                Stress& stress) {
     using Value = std::remove_cvref_t<decltype(entry(L, 0, 0))>;
-    rotate_by_spin(0.5 * (entry(L, 0, 1) - entry(L, 1, 0)) * dt, stress);
-    return std::array<Value, 4>{entry(L, 0, 0) * dt, entry(L, 1, 1) * dt, Value{},
-                                0.5 * (entry(L, 0, 1) + entry(L, 1, 0)) * dt};
+    if constexpr (dim == 2) {
+      rotate_by_spin(0.5 * (entry(L, 0, 1) - entry(L, 1, 0)) * dt, stress);
+      return std::array<Value, 4>{entry(L, 0, 0) * dt, entry(L, 1, 1) * dt, Value{},
+                                  0.5 * (entry(L, 0, 1) + entry(L, 1, 0)) * dt};
+    } else {
+      rotate_by_spin_3d(L, dt, stress);
+      return std::array<Value, 6>{entry(L, 0, 0) * dt,
+                                  entry(L, 1, 1) * dt,
+                                  entry(L, 2, 2) * dt,
+                                  0.5 * (entry(L, 0, 1) + entry(L, 1, 0)) * dt,
+                                  0.5 * (entry(L, 0, 2) + entry(L, 2, 0)) * dt,
+                                  0.5 * (entry(L, 1, 2) + entry(L, 2, 1)) * dt};
+    }
   }
 
   // The Jaumann rotation of the stress by the spin angle of a step, in place.
@@ -110,14 +132,47 @@ requires(!Model::is_cosserat && material::dimension_of<Model> == 2) class Classi
     stress[3] = sxy + spin * (syy - sxx);
   }
 
+  // The same in 3D: sigma <- sigma + W sigma - sigma W with the step's spin W = (L - L^T) dt / 2,
+  // i.e. d sigma_ij = sum_k (W_ik sigma_kj + W_jk sigma_ki), all from the old stress. For L in
+  // the xy plane it is rotate_by_spin (with spin = W_xy).
+  template <class Gradient, class Stress>
+  COSMPM_ALWAYS_INLINE static void rotate_by_spin_3d(const Gradient& L, double dt, Stress& stress) {
+    using Value = std::remove_cvref_t<decltype(entry(L, 0, 0))>;
+    const Value wxy = 0.5 * (entry(L, 0, 1) - entry(L, 1, 0)) * dt;
+    const Value wxz = 0.5 * (entry(L, 0, 2) - entry(L, 2, 0)) * dt;
+    const Value wyz = 0.5 * (entry(L, 1, 2) - entry(L, 2, 1)) * dt;
+    const Value sxx = stress[0];
+    const Value syy = stress[1];
+    const Value szz = stress[2];
+    const Value sxy = stress[3];
+    const Value sxz = stress[4];
+    const Value syz = stress[5];
+    // W = [[0, wxy, wxz], [-wxy, 0, wyz], [-wxz, -wyz, 0]].
+    stress[0] = sxx + 2.0 * (wxy * sxy + wxz * sxz);
+    stress[1] = syy + 2.0 * (wyz * syz - wxy * sxy);
+    stress[2] = szz - 2.0 * (wxz * sxz + wyz * syz);
+    stress[3] = sxy + wxy * (syy - sxx) + wxz * syz + wyz * sxz;
+    stress[4] = sxz + wxz * (szz - sxx) + wxy * syz - wyz * sxy;
+    stress[5] = syz + wyz * (szz - syy) - wxy * sxz - wxz * sxy;
+  }
+
   // --- how a particle loads the grid ----------------------------------------------------
 
   // A particle's nodal internal force -V sigma . grad N, written as sum_i dN/dx_i b[j][i] for
   // force component j (the transfers contract it one axis at a time).
-  static std::array<std::array<double, 2>, 2> internal_force_coefficients(const stress_type& stress,
-                                                                          double volume) {
-    const double sxy = -volume * stress[3];
-    return {{{-volume * stress[0], sxy}, {sxy, -volume * stress[1]}}};
+  static std::array<std::array<double, dim>, dim> internal_force_coefficients(
+      const stress_type& stress, double volume) {
+    if constexpr (dim == 2) {
+      const double sxy = -volume * stress[3];
+      return {{{-volume * stress[0], sxy}, {sxy, -volume * stress[1]}}};
+    } else {
+      const double sxy = -volume * stress[3];
+      const double sxz = -volume * stress[4];
+      const double syz = -volume * stress[5];
+      return {{{-volume * stress[0], sxy, sxz},
+               {sxy, -volume * stress[1], syz},
+               {sxz, syz, -volume * stress[2]}}};
+    }
   }
 
   // --- rotational degrees of freedom: none ----------------------------------------------
@@ -129,22 +184,23 @@ requires(!Model::is_cosserat && material::dimension_of<Model> == 2) class Classi
   static std::array<double, 0> rotational_velocity(const Store&, Index) {
     return {};
   }
-  static void rotational_force_terms(const stress_type&, double, double*, std::array<double, 2>*) {}
+  static void rotational_force_terms(const stress_type&, double, double*,
+                                     std::array<double, dim>*) {}
   template <class Store>
   static void update_rotations(Store&, Index, double, double, const std::array<double, 0>&,
                                const std::array<double, 0>&) {}
   template <class Store>
   void initialise_particles(Store&, Index, Index) const {}
-  void apply_rotation_conditions(const grid::Grid<2>&, std::span<double>) const {}
+  void apply_rotation_conditions(const grid::Grid<dim>&, std::span<double>) const {}
   // No bound of its own: the engine's p-wave bound holds.
-  double stable_time_step(const grid::Grid<2>&, double) const {
+  double stable_time_step(const grid::Grid<dim>&, double) const {
     return std::numeric_limits<double>::infinity();
   }
 
  private:
-  static double entry(const Mat<2>& L, int i, int j) { return L(i, j); }
+  static double entry(const Mat<dim>& L, int i, int j) { return L(i, j); }
   template <class Value>
-  static const Value& entry(const std::array<std::array<Value, 2>, 2>& L, int i, int j) {
+  static const Value& entry(const std::array<std::array<Value, dim>, dim>& L, int i, int j) {
     return L[i][j];
   }
 

@@ -102,12 +102,29 @@ inline std::string per_out_of_plane(const char* units, int dim) {
 
 }  // namespace detail
 
-// How the 2D plane-strain stress-like values of a field are laid out (core/types.hpp).
+// How the stress-like values of a field are laid out (core/types.hpp,
+// material/stress_space.hpp).
 enum class TensorLayout {
   none,         // not a tensor stored as a column
-  symmetric2d,  // [xx, yy, zz, xy]
+  symmetric2d,  // [xx, yy, zz, xy] (plane strain)
+  symmetric3d,  // [xx, yy, zz, xy, xz, yz]
   cosserat2d,   // [xx, yy, zz, xy, yx, c_31, c_32]: a non-symmetric tensor plus a 2-vector
 };
+
+namespace detail {
+// The layout of a model's stress or strain vector, from its number of components.
+template <class V>
+constexpr TensorLayout stress_like_layout() {
+  constexpr Index rows = EigenFixed<V>::rows;
+  if constexpr (rows == 7) {
+    return TensorLayout::cosserat2d;
+  } else if constexpr (rows == 6) {
+    return TensorLayout::symmetric3d;
+  } else {
+    return TensorLayout::symmetric2d;
+  }
+}
+}  // namespace detail
 
 // What a particle field means and its unit. The primary template reads the tag's own
 // units() and description() if it has them.
@@ -202,9 +219,7 @@ struct FieldInfo<particles::field::Stress<Model>> {
   static std::string description() {
     return "Cauchy stress sigma_ij (face normal i, direction j), tension positive";
   }
-  static constexpr TensorLayout layout = detail::EigenFixed<typename Model::stress_type>::rows == 7
-                                             ? TensorLayout::cosserat2d
-                                             : TensorLayout::symmetric2d;
+  static constexpr TensorLayout layout = detail::stress_like_layout<typename Model::stress_type>();
   static constexpr double out_of_plane_diagonal = 0.0;
   // The Cosserat part: couple stresses m_31, m_32.
   static constexpr const char* couple_label = "couple_stress";
@@ -217,9 +232,7 @@ struct FieldInfo<particles::field::Strain<Model>> {
   static std::string description() {
     return "accumulated small strain (logarithmic rate) eps_ij, extension positive";
   }
-  static constexpr TensorLayout layout = detail::EigenFixed<typename Model::strain_type>::rows == 7
-                                             ? TensorLayout::cosserat2d
-                                             : TensorLayout::symmetric2d;
+  static constexpr TensorLayout layout = detail::stress_like_layout<typename Model::strain_type>();
   static constexpr double out_of_plane_diagonal = 0.0;
   static constexpr const char* couple_label = "curvature";
   static std::string couple_units() { return "1/m"; }

@@ -113,8 +113,18 @@ void add_eigen_field(ArrayList& list, const std::vector<typename Tag::value_type
   constexpr Index cols = EigenFixed<V>::cols;
   const std::string label = Tag::label();
   const std::size_t n = column.size();
-  if constexpr (Info::layout == TensorLayout::symmetric2d ||
-                Info::layout == TensorLayout::cosserat2d) {
+  if constexpr (Info::layout == TensorLayout::symmetric3d) {
+    static_assert(cols == 1 && rows == 6, "io: a 3D symmetric tensor has 6 components");
+    auto& tensor = list.add(label, ArrayShape::tensor, Info::units(dim), Info::description());
+    for (std::size_t p = 0; p < n; ++p) {
+      const Eigen::Matrix3d full = material::to_tensor<3, double>(column[p]);
+      double* t = tensor.values.data() + 9 * p;
+      for (int i = 0; i < 3; ++i) {
+        for (int j = 0; j < 3; ++j) t[t9(i, j)] = full(i, j);
+      }
+    }
+  } else if constexpr (Info::layout == TensorLayout::symmetric2d ||
+                       Info::layout == TensorLayout::cosserat2d) {
     static_assert(cols == 1 && (rows == 4 || rows == 7), "io: a 2D tensor has 4 or 7 components");
     auto& tensor = list.add(label, ArrayShape::tensor, Info::units(dim), Info::description());
     for (std::size_t p = 0; p < n; ++p) {

@@ -1,6 +1,7 @@
 #pragma once
 // Particle seeding: n particles per cell and axis at the centres of equal sub-cells, inside
-// a box or (2D) a polygon. A sub-cell belongs to the region when its centre does.
+// a box, a polygon (2D) or a polygon extruded along an axis (3D). A sub-cell belongs to the
+// region when its centre does.
 #include <array>
 #include <string>
 #include <vector>
@@ -98,6 +99,32 @@ inline Seeding<2> seed_polygon(const grid::Grid<2>& g, const std::vector<Vec<2>>
     if (inside_polygon(polygon, x)) seeding.positions.push_back(x);
   });
   require(!seeding.positions.empty(), "seed_polygon: the polygon holds no sub-cell centre");
+  return seeding;
+}
+
+// Particles filling a simple polygon extruded along `axis` of a 3D grid over [lower, upper]
+// on that axis. The polygon's vertices are given in the other two axes in increasing order:
+// (y, z) for axis 0, (x, z) for axis 1 (a 2D section in the vertical xz plane extruded across
+// the width), (x, y) for axis 2.
+inline Seeding<3> seed_extruded_polygon(const grid::Grid<3>& g, const std::vector<Vec<2>>& polygon,
+                                        int axis, double lower, double upper, int per_cell) {
+  require_in_range("seed_extruded_polygon", "vertex count", static_cast<double>(polygon.size()),
+                   3.0, 1e9, Bounds::closed);
+  require_in_range("seed_extruded_polygon", "axis", axis, 0, 2, Bounds::closed);
+  if (!(upper > lower)) {
+    throw Error("seed_extruded_polygon: upper = " + cosmpm::detail::format_number(upper) +
+                " must exceed lower = " + cosmpm::detail::format_number(lower) +
+                " (the extrusion's extent along axis " + std::to_string(axis) + ")");
+  }
+  const int first = axis == 0 ? 1 : 0;
+  const int second = axis == 2 ? 1 : 2;
+  auto seeding = detail::empty_seeding(g, per_cell, "seed_extruded_polygon");
+  detail::for_each_subcell_centre(g, per_cell, [&](const Vec<3>& x) {
+    if (x[axis] < lower || x[axis] > upper) return;
+    if (inside_polygon(polygon, Vec<2>(x[first], x[second]))) seeding.positions.push_back(x);
+  });
+  require(!seeding.positions.empty(),
+          "seed_extruded_polygon: the extruded polygon holds no sub-cell centre");
   return seeding;
 }
 

@@ -16,6 +16,7 @@
 #include "cosmpm/core/parallel.hpp"
 #include "cosmpm/core/types.hpp"
 #include "cosmpm/material/concept.hpp"
+#include "cosmpm/material/stress_space.hpp"
 #include "cosmpm/particles/fields.hpp"
 #include "cosmpm/shape/stencil_grid.hpp"
 #include "cosmpm/shape/transfer.hpp"
@@ -72,7 +73,7 @@ COSMPM_ALWAYS_INLINE bool update_constitutive(State& s, Index q,
 // continua and models that update packs of components (Continuum::updates_values).
 template <class State, int W>
 inline constexpr bool packed_stress_update =
-    State::dim == 2 && State::continuum_type::template updates_values<Pack<W>>;
+    State::continuum_type::template updates_values<Pack<W>>;
 
 // The stress update of particles p, ..., p + W - 1 on packs, with their velocity gradient L;
 // returns the sum of each new stress's components (non-finite when one is).
@@ -82,21 +83,33 @@ COSMPM_ALWAYS_INLINE Pack<W> update_stress_packed(
     double dt) {
   using P = Pack<W>;
   using Model = typename State::model_type;
+  constexpr int n = material::symmetric_components<State::dim>;
   auto& stress = s.particles.template get<particles::field::Stress<Model>>();
   auto& strain = s.particles.template get<particles::field::Strain<Model>>();
-  static constexpr std::array<int, 3> strain_components{0, 1, 3};  // zz stays (plane strain)
-  std::array<P, 4> sigma;
-  std::array<P, 4> e;
-  e[2] = P{};  // zz: not accumulated (plane strain), not stored
-  for (int c = 0; c < 4; ++c) sigma[c] = make_pack<W>([&](int l) { return stress[p + l][c]; });
+  // Plane strain: zz is not accumulated, not stored; in 3D every component is.
+  static constexpr auto strain_components = [] {
+    if constexpr (State::dim == 2) {
+      return std::array<int, 3>{0, 1, 3};
+    } else {
+      return std::array<int, 6>{0, 1, 2, 3, 4, 5};
+    }
+  }();
+  std::array<P, n> sigma;
+  std::array<P, n> e;
+  e[2] = P{};
+  for (int c = 0; c < n; ++c) sigma[c] = make_pack<W>([&](int l) { return stress[p + l][c]; });
   for (const int c : strain_components)
     e[c] = make_pack<W>([&](int l) { return strain[p + l][c]; });
   State::continuum_type::update_stress_values(s.model(), L, dt, sigma, e);
   for (int l = 0; l < W; ++l) {
-    for (int c = 0; c < 4; ++c) stress[p + l][c] = lane<W>(sigma[c], l);
+    for (int c = 0; c < n; ++c) stress[p + l][c] = lane<W>(sigma[c], l);
     for (const int c : strain_components) strain[p + l][c] = lane<W>(e[c], l);
   }
-  return (sigma[0] + sigma[1]) + (sigma[2] + sigma[3]);
+  if constexpr (n == 4) {
+    return (sigma[0] + sigma[1]) + (sigma[2] + sigma[3]);
+  } else {
+    return ((sigma[0] + sigma[1]) + (sigma[2] + sigma[3])) + (sigma[4] + sigma[5]);
+  }
 }
 
 // Stage 4a: particle rates from a nodal velocity field (and the rotational rates, ignored by a
