@@ -22,12 +22,12 @@
 #include <algorithm>
 #include <array>
 #include <cmath>
-#include <limits>
 #include <string>
 #include <utility>
 #include <vector>
 
 #include "cosmpm/contact/concept.hpp"
+#include "cosmpm/contact/detail/contact_point.hpp"
 #include "cosmpm/contact/detail/gaps.hpp"
 #include "cosmpm/contact/grid_view.hpp"
 #include "cosmpm/contact/interface.hpp"
@@ -256,52 +256,6 @@ class RigidContact {
     }
   }
 
-  // Direction of increasing material mass at a node (central differences of nodal mass,
-  // one-sided on the grid faces): it points from the body into the material.
-  static Vec<Dim> mass_gradient(const GridView<Dim>& view, Index n) {
-    const auto ijk = view.grid.node_ijk(n);
-    Vec<Dim> g = Vec<Dim>::Zero();
-    Index stride = 1;
-    for (int d = 0; d < Dim; ++d) {
-      const bool has_lower = ijk[d] > 0;
-      const bool has_upper = ijk[d] < view.grid.nodes(d) - 1;
-      const double lower = has_lower ? view.mass[n - stride] : view.mass[n];
-      const double upper = has_upper ? view.mass[n + stride] : view.mass[n];
-      const double span = (has_lower && has_upper) ? 2.0 : 1.0;
-      g[d] = (upper - lower) / (span * view.grid.cell_size()[d]);
-      stride *= view.grid.nodes(d);
-    }
-    return g;
-  }
-
-  // The boundary point whose normal the node uses: the closest one, unless the material lies
-  // on another side (a node inside or behind a body thinner than the support sees the face
-  // the material touches, not the nearest one); then the closest of the edges within the
-  // node's support that face the material.
-  static BoundaryPoint contact_point(const GridView<Dim>& view, const RigidBody<Dim>& body, Index n,
-                                     const Vec<Dim>& x, const Vec<Dim>& reach) {
-    const BoundaryPoint closest = body.closest(x);
-    const Vec<Dim> g = mass_gradient(view, n);
-    if (closest.normal.dot(g) >= 0.0) return closest;
-    const bool inside = closest.signed_distance < 0.0;
-    BoundaryPoint best = closest;
-    double best_distance = std::numeric_limits<double>::infinity();
-    for (int e = 0; e < body.edge_count(); ++e) {
-      if (!body.edge_meets_open_box(e, x, reach)) continue;
-      const BoundaryPoint p = body.closest_on_edge(x, e, inside);
-      // Behind a thin body the facing edge lies beyond it: its face normal, not the offset.
-      const Vec<Dim> normal = body.edge_normal(e);
-      if (normal.dot(g) <= 0.0) continue;
-      const double distance = std::abs(p.signed_distance);
-      if (distance < best_distance) {
-        best = p;
-        best.normal = normal;
-        best_distance = distance;
-      }
-    }
-    return best;
-  }
-
   void measure_gaps(const GridView<Dim>& view, const RigidBody<Dim>& body, int b) {
     detail::smallest_gaps(view, body, b, gaps_);
   }
@@ -339,7 +293,7 @@ class RigidContact {
         if (m <= view.empty_mass) continue;
         const Vec<Dim> x = g.node_position(n);
         if (!body.meets_open_box(x, reach)) continue;
-        const BoundaryPoint p = contact_point(view, body, n, x, reach);
+        const BoundaryPoint p = detail::contact_point(view, body, n, x, reach);
         const Vec<Dim> v_trial = view.velocity[n];
         const Vec<Dim> v_body = body.velocity_at(x, body_velocity, body_omega);
         const Vec<Dim> v_rel = v_trial - v_body;
