@@ -539,9 +539,10 @@ def write_report(out, runs, figures, rows, heights, bands, args):
         if status not in ("0", "?") and log.exists():
             match = re.search(r"^error: (.*)$", log.read_text(), re.MULTILINE)
             error = match.group(1)[:160] if match else "exit %s" % status
-        arguments = " ".join("%s=%s" % (k, run.case[k]) for k in (
-            "depth", "psi", "floor", "dilatancy-cutoff", "polar", "blade-rotation-fixed",
-            "travel") if k in run.case)
+        shown = {"depth": None, "psi": None, "floor": None, "dilatancy-cutoff": "0",
+                 "polar": "false", "blade-rotation-fixed": "true", "travel": None}
+        arguments = " ".join("%s=%s" % (k, run.case[k]) for k, default in shown.items()
+                             if k in run.case and run.case[k] != default)
         lines.append("| %s | %s, %s | %.0f mm | %s | %s s |" % (
             name, run.mesh, arguments, run.travel_reached * 1000,
             "complete" if status == "0" else "stopped: " + error.replace("|", "/"), seconds))
@@ -575,7 +576,8 @@ def write_report(out, runs, figures, rows, heights, bands, args):
             lines.append("(no figure: its runs are missing)")
         if key == "surface" and heights:
             lines += ["", "Highest point of the free surface ahead of the blade [mm]:", "",
-                      "| psi | " + " | ".join("%.0f mm" % t for t in (0.1, 0.2, 0.3, 0.4)) + " |",
+                      "| psi | " + " | ".join("%.0f mm" % (t * 1000) for t in (0.1, 0.2, 0.3, 0.4))
+                      + " |",
                       "| ---: |" + " ---: |" * 4]
             for psi in sorted({h[0] for h in heights}, key=float):
                 cells = []
@@ -583,6 +585,38 @@ def write_report(out, runs, figures, rows, heights, bands, args):
                     value = [h[2] for h in heights if h[0] == psi and abs(h[1] - t) < 1e-9]
                     cells.append("%.0f" % (value[0] * 1000) if value else "-")
                 lines.append("| %s | %s |" % (psi, " | ".join(cells)))
+        if key in ("psi", "depth"):
+            names = (("h0.35_psi2_floor", "h0.35_psi10", "h0.35_psi26", "h0.35", "polar_h0.35")
+                     if key == "psi" else ("h0.15", "h0.25", "h0.35"))
+            windows = ((0.015, 0.035), (0.035, 0.05), (0.05, 0.1))
+            lines += ["", "Average draft [N/m] over stretches of travel:", "",
+                      "| run | " + " | ".join("%.0f-%.0f mm" % (a * 1000, b * 1000)
+                                              for a, b in windows) + " |",
+                      "| --- |" + " ---: |" * len(windows)]
+            for name in names:
+                if name not in runs or runs[name].forces is None:
+                    continue
+                forces = runs[name].forces
+                cells = []
+                for a, b in windows:
+                    inside = ((forces["displacement_m"] >= a) & (forces["displacement_m"] <= b))
+                    cells.append("%.0f" % forces["draft_N_per_m"][inside].mean()
+                                 if inside.any() and forces["displacement_m"][-1] >= b - 1e-9
+                                 else "-")
+                lines.append("| %s | %s |" % (runs[name].label(), " | ".join(cells)))
+        if key == "stress":
+            lines += ["", "| run | normal stress, mean over the blade [kPa] | shear stress, mean "
+                      "[kPa] | shear / normal |", "| --- | ---: | ---: | ---: |"]
+            for name in ("h0.35", "polar_h0.35", "polar_h0.35_free"):
+                path = out / "runs" / name / "blade_stress.csv"
+                if not path.exists():
+                    continue
+                profile = read_csv(path)
+                keep = (profile["depth_m"] >= -1e-9) & (profile["nodes"] > 0)
+                normal = profile["normal_traction_Pa"][keep].mean() / 1000
+                shear = profile["shear_traction_Pa"][keep].mean() / 1000
+                lines.append("| %s | %.2f | %.2f | %.3f |" % (runs[name].label(), normal, shear,
+                                                             shear / normal))
         if key == "drafts":
             lines += ["", "| h [mm] | Sokolovski | ours, fixed floor | ours, Coulomb floor | "
                       "ours, polar | polar / nonpolar | experiment (derived) |",

@@ -52,133 +52,49 @@ cmake -S . -B build/release -G Ninja -DCMAKE_BUILD_TYPE=Release -DCOSMPM_BUILD_E
 cmake --build build/release -j "${COSMPM_JOBS:-2}" --target example_03_flat_blade
 driver=$root/build/release/examples/example_03_flat_blade
 
-mkdir -p "$out/runs"
-names=()
-arguments=()
-# case NAME ARGUMENTS...: one run of the set, on the paper's defaults (Table 1, h = 250 mm,
-# psi = 2 deg, fixed floor, MUSL, linear shape functions) unless its arguments say otherwise.
-case_() {
-  names+=("$1")
-  shift
-  arguments+=("$*")
-}
+# shellcheck source=scripts/flat_blade_queue.sh
+source "$root/scripts/flat_blade_queue.sh"
+queue_mesh=$fine
+# Each case: the paper's defaults (Table 1, h = 250 mm, psi = 2 deg, fixed floor, MUSL, linear
+# shape functions) unless its arguments say otherwise.
 # Figs. 1-3: h = 200 mm pushed 400 mm for psi = 2, 10, 26 deg. On a Coulomb floor (the fixed
 # floor holds the bottom row under the blade's tip), and with dilatancy stopping at a plastic
-# shear strain of 0.2 for psi = 10 and 26 (without it the unbounded dilation of perfect
+# shear strain of 0.1 for psi = 10 and 26 (without it the unbounded dilation of perfect
 # plasticity stops those runs: docs/validation.md, "Large travel").
 flow="--depth 0.2 --travel 0.4 --floor friction --frame-interval 0.1 --average-to 0.1"
-case_ flow_psi26 "$flow --psi 26 --dilatancy-cutoff 0.2"
-case_ flow_psi10 "$flow --psi 10 --dilatancy-cutoff 0.2"
-case_ flow_psi2 "$flow --psi 2"
+queue_case flow_psi26 "$flow --psi 26 --dilatancy-cutoff 0.1"
+queue_case flow_psi10 "$flow --psi 10 --dilatancy-cutoff 0.1"
+queue_case flow_psi2 "$flow --psi 2"
 # Fig. 8 (polar), 9 (polar, both rotation conditions at the blade), 11 (polar PDR).
 for depth in 0.35 0.25 0.15; do
-  case_ "polar_h${depth}" "--polar true --depth $depth"
+  queue_case "polar_h${depth}" "--polar true --depth $depth"
 done
-case_ polar_h0.35_free "--polar true --depth 0.35 --blade-rotation-fixed false"
+queue_case polar_h0.35_free "--polar true --depth 0.35 --blade-rotation-fixed false"
 # Fig. 6: h = 350 mm, 100 mm of travel, the three dilatancy angles, on the Coulomb floor with
 # the same cut-off as Figs. 1-3 (on the fixed floor psi = 26 stops at the tip within 35 mm).
 for psi in 26 10; do
-  case_ "h0.35_psi${psi}" "--depth 0.35 --travel 0.1 --floor friction --psi $psi --dilatancy-cutoff 0.2"
+  queue_case "h0.35_psi${psi}" "--depth 0.35 --travel 0.1 --floor friction --psi $psi --dilatancy-cutoff 0.1"
 done
-case_ h0.35_psi2_floor "--depth 0.35 --travel 0.1 --floor friction"
+queue_case h0.35_psi2_floor "--depth 0.35 --travel 0.1 --floor friction"
 # Figs. 7-9 and 11-13: psi = 2 at the three depths on the paper's fixed floor, 100 mm of travel;
 # Fig. 8 also on the Coulomb floor; Figs. 12-13 on the coarser mesh too.
 for depth in 0.35 0.25 0.15; do
-  case_ "h${depth}" "--depth $depth --travel 0.1"
+  queue_case "h${depth}" "--depth $depth --travel 0.1"
 done
 for depth in 0.25 0.15; do
-  case_ "h${depth}_floor" "--depth $depth --floor friction"
+  queue_case "h${depth}_floor" "--depth $depth --floor friction"
 done
-case_ h0.25_coarse "--depth 0.25 --mesh $coarse"
+queue_case h0.25_coarse "--depth 0.25 --mesh $coarse"
 
-# The planned work of each run (particle-steps, from the driver's own --check), for the ETA.
-mesh_of() { case "$1" in *--mesh*) echo "" ;; *) echo "--mesh $fine" ;; esac; }
-weights=()
-total_weight=0
-for i in "${!names[@]}"; do
-  # shellcheck disable=SC2086,SC2046
-  line=$("$driver" --check ${arguments[$i]} $(mesh_of "${arguments[$i]}") 2>&1 | tail -1)
-  particles=$(sed -n 's/.*checked: \([0-9]*\) particles, \([0-9]*\) steps.*/\1/p' <<<"$line")
-  steps=$(sed -n 's/.*checked: \([0-9]*\) particles, \([0-9]*\) steps.*/\2/p' <<<"$line")
-  if [ -z "$particles" ] || [ -z "$steps" ]; then
-    echo "reproduce_paper.sh: the case ${names[$i]} does not check: $line" >&2
-    exit 2
-  fi
-  weights+=($((particles * steps / 1000)))
-  total_weight=$((total_weight + particles * steps / 1000))
-done
-
-started=$(date +%s)
-format_seconds() { printf '%d:%02d' $(($1 / 60)) $(($1 % 60)); }
-run_one() {
-  local i=$1 name=${names[$1]} t0 status
-  t0=$(date +%s)
-  # shellcheck disable=SC2086,SC2046
-  if "$driver" ${arguments[$i]} $(mesh_of "${arguments[$i]}") --threads 1 --replace true \
-    --out "$out/runs/$name" >"$out/runs/$name.log" 2>&1; then
-    status=0
-  else
-    status=$?
-  fi
-  echo "$status $(($(date +%s) - t0))" >"$out/runs/$name.status"
-  return 0
-}
-
-echo "reproduce_paper.sh: ${#names[@]} runs into $out, $jobs at a time (meshes $fine, $coarse)" >&2
-running=()
-done_weight=0
-finished=0
-report_finished() {
-  local i=$1 name=${names[$1]} status seconds elapsed eta
-  read -r status seconds <"$out/runs/$name.status"
-  finished=$((finished + 1))
-  done_weight=$((done_weight + weights[i]))
-  elapsed=$(($(date +%s) - started))
-  eta=$((elapsed * (total_weight - done_weight) / (done_weight > 0 ? done_weight : 1)))
-  if [ "$status" = 0 ]; then
-    printf '[paper] %d/%d %s done in %s | elapsed %s | ETA %s\n' "$finished" "${#names[@]}" \
-      "$name" "$(format_seconds "$seconds")" "$(format_seconds $elapsed)" \
-      "$(format_seconds $eta)" >&2
-  else
-    printf '[paper] %d/%d %s STOPPED (exit %s) after %s: %s\n' "$finished" "${#names[@]}" \
-      "$name" "$status" "$(format_seconds "$seconds")" \
-      "$(grep -m1 '^error' "$out/runs/$name.log" || tail -1 "$out/runs/$name.log")" >&2
-  fi
-}
-rm -f "$out"/runs/*.status
-next=0
-while [ "$finished" -lt "${#names[@]}" ]; do
-  while [ "$next" -lt "${#names[@]}" ] && [ "${#running[@]}" -lt "$jobs" ]; do
-    run_one "$next" &
-    running+=("$next")
-    next=$((next + 1))
-  done
-  sleep 1
-  still=()
-  for i in "${running[@]}"; do
-    if [ -f "$out/runs/${names[$i]}.status" ]; then
-      report_finished "$i"
-    else
-      still+=("$i")
-    fi
-  done
-  running=("${still[@]+"${still[@]}"}")
-done
-wait
-wall=$(($(date +%s) - started))
-echo "[paper] all runs finished in $(format_seconds $wall) of wall time" >&2
+queue_run "$driver" "$out/runs" "$jobs" paper
+wall=$queue_wall
 
 quick_flag=()
 [ "$quick" = true ] && quick_flag=(--quick)
 /usr/bin/python3 scripts/plot_paper.py "$out" --wall-seconds "$wall" --meshes "$fine" "$coarse" \
   "${quick_flag[@]+"${quick_flag[@]}"}"
-failed=0
-for name in "${names[@]}"; do
-  read -r status _ <"$out/runs/$name.status"
-  [ "$status" = 0 ] || failed=$((failed + 1))
-done
-if [ "$failed" -gt 0 ]; then
-  echo "reproduce_paper.sh: $failed run(s) stopped; their figures show what they wrote ($out/report.md)" >&2
+if [ "$queue_failed" -gt 0 ]; then
+  echo "reproduce_paper.sh: $queue_failed run(s) stopped; their figures show what they wrote ($out/report.md)" >&2
   exit 1
 fi
 echo "reproduce_paper.sh: figures and report in $out (report.md)" >&2
