@@ -7,11 +7,16 @@
 #   queue_case NAME "ARGUMENTS"        # driver options; --mesh QUEUE_MESH is added unless given
 #   queue_run DRIVER RUNS_DIR JOBS TAG # RUNS_DIR/NAME (output), NAME.log, NAME.status
 #
+# With queue_resume=true a case whose NAME.status says it completed is not run again (a set
+# that was stopped, or had runs that stopped, continues with what is missing).
+#
 # After queue_run: queue_wall (s) and queue_failed (runs that stopped). A run that stops keeps
-# what it wrote; its status file holds the exit code and its wall time.
+# what it wrote; its status file holds the exit code and its wall time, NAME.times the
+# processor time (bash `times`).
 queue_names=()
 queue_arguments=()
 queue_mesh=
+queue_resume=false
 
 queue_case() {
   queue_names+=("$1")
@@ -31,7 +36,15 @@ queue_run() {
   local i line particles steps total=0 done_weight=0 finished=0 next=0 started
   local -a weights=() running=() still=()
   mkdir -p "$runs"
+  local -a pending=()
   for i in "${!queue_names[@]}"; do
+    if [ "$queue_resume" = true ] && [ -f "$runs/${queue_names[$i]}.status" ] &&
+      [ "$(cut -d' ' -f1 "$runs/${queue_names[$i]}.status")" = 0 ]; then
+      continue
+    fi
+    pending+=("$i")
+  done
+  for i in "${pending[@]+"${pending[@]}"}"; do
     # shellcheck disable=SC2086,SC2046
     line=$("$driver" --check ${queue_arguments[$i]} $(queue_mesh_option "${queue_arguments[$i]}") 2>&1 | tail -1)
     particles=$(sed -n 's/.*checked: \([0-9]*\) particles, \([0-9]*\) steps.*/\1/p' <<<"$line")
@@ -43,13 +56,13 @@ queue_run() {
     weights+=($((particles * steps / 1000)))
     total=$((total + particles * steps / 1000))
   done
-  echo "[$tag] ${#queue_names[@]} runs into $runs, $jobs at a time" >&2
-  for i in "${!queue_names[@]}"; do rm -f "$runs/${queue_names[$i]}.status"; done
+  echo "[$tag] ${#pending[@]} of ${#queue_names[@]} runs into $runs, $jobs at a time" >&2
+  for i in "${pending[@]+"${pending[@]}"}"; do rm -f "$runs/${queue_names[$i]}.status"; done
   started=$(date +%s)
-  while [ "$finished" -lt "${#queue_names[@]}" ]; do
-    while [ "$next" -lt "${#queue_names[@]}" ] && [ "${#running[@]}" -lt "$jobs" ]; do
-      queue_start_ "$driver" "$runs" "$next" &
-      running+=("$next")
+  while [ "$finished" -lt "${#pending[@]}" ]; do
+    while [ "$next" -lt "${#pending[@]}" ] && [ "${#running[@]}" -lt "$jobs" ]; do
+      queue_start_ "$driver" "$runs" "${pending[$next]}" &
+      running+=("${pending[$next]}")
       next=$((next + 1))
     done
     sleep 1
@@ -58,7 +71,8 @@ queue_run() {
       if [ -f "$runs/${queue_names[$i]}.status" ]; then
         finished=$((finished + 1))
         done_weight=$((done_weight + weights[i]))
-        queue_report_ "$runs" "$i" "$tag" "$finished" "$started" "$total" "$done_weight"
+        queue_report_ "$runs" "$i" "$tag" "$finished/${#pending[@]}" "$started" "$total" \
+          "$done_weight"
       else
         still+=("$i")
       fi
@@ -87,6 +101,9 @@ queue_start_() {
   else
     status=$?
   fi
+  # The processor time of the run (its user and system time: the second line of `times`),
+  # which a loaded machine does not inflate the way it does the wall time.
+  times >"$runs/$name.times"
   echo "$status $(($(date +%s) - t0))" >"$runs/$name.status"
 }
 
@@ -98,12 +115,12 @@ queue_report_() {
   elapsed=$(($(date +%s) - started))
   eta=$((elapsed * (total - done_weight) / (done_weight > 0 ? done_weight : 1)))
   if [ "$status" = 0 ]; then
-    printf '[%s] %d/%d %s done in %s | elapsed %s | ETA %s\n' "$tag" "$finished" \
-      "${#queue_names[@]}" "$name" "$(queue_format_seconds "$seconds")" \
+    printf '[%s] %s %s done in %s | elapsed %s | ETA %s\n' "$tag" "$finished" \
+      "$name" "$(queue_format_seconds "$seconds")" \
       "$(queue_format_seconds $elapsed)" "$(queue_format_seconds $eta)" >&2
   else
-    printf '[%s] %d/%d %s STOPPED (exit %s) after %s: %s\n' "$tag" "$finished" \
-      "${#queue_names[@]}" "$name" "$status" "$(queue_format_seconds "$seconds")" \
+    printf '[%s] %s %s STOPPED (exit %s) after %s: %s\n' "$tag" "$finished" \
+      "$name" "$status" "$(queue_format_seconds "$seconds")" \
       "$(grep -m1 '^error' "$runs/$name.log" || tail -1 "$runs/$name.log")" >&2
   fi
 }

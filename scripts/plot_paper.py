@@ -522,13 +522,33 @@ def main():
     write_report(out, runs, figures, rows, heights, bands, args)
 
 
+def processor_seconds(path):
+    """User + system time of a run's processes from bash `times` (its second line), or None."""
+    if not path.exists():
+        return None
+    text = path.read_text().splitlines()
+    if len(text) < 2:
+        return None
+    total = 0.0
+    for minutes, seconds in re.findall(r"(\d+)m([\d.]+)s", text[1]):
+        total += 60 * float(minutes) + float(seconds)
+    return total
+
+
 def write_report(out, runs, figures, rows, heights, bands, args):
     lines = ["# The paper's figures, reproduced", ""]
     lines.append("Made by `scripts/reproduce_paper.sh%s` (meshes %s and %s)."
                  % (" --quick" if args.quick else "", args.meshes[0], args.meshes[1]))
     if args.wall_seconds:
         lines.append("All runs took %.1f min of wall time." % (args.wall_seconds / 60))
-    lines += ["", "| run | arguments | reached | status | wall |", "| --- | --- | ---: | --- | ---: |"]
+    cpu = {name: processor_seconds(out / "runs" / (name + ".times")) for name in runs}
+    total_cpu = sum(v for v in cpu.values() if v is not None)
+    if total_cpu > 0:
+        lines.append("Their processor time: %.1f min in all, so about %.1f min of wall time for "
+                     "two runs at a time on an idle two-core machine." % (total_cpu / 60,
+                                                                         total_cpu / 120))
+    lines += ["", "| run | arguments | reached | status | wall | processor |",
+              "| --- | --- | ---: | --- | ---: | ---: |"]
     for name, run in runs.items():
         status_file = out / "runs" / (name + ".status")
         status, seconds = ("?", "?")
@@ -543,9 +563,10 @@ def write_report(out, runs, figures, rows, heights, bands, args):
                  "polar": "false", "blade-rotation-fixed": "true", "travel": None}
         arguments = " ".join("%s=%s" % (k, run.case[k]) for k, default in shown.items()
                              if k in run.case and run.case[k] != default)
-        lines.append("| %s | %s, %s | %.0f mm | %s | %s s |" % (
+        lines.append("| %s | %s, %s | %.0f mm | %s | %s s | %s s |" % (
             name, run.mesh, arguments, run.travel_reached * 1000,
-            "complete" if status == "0" else "stopped: " + error.replace("|", "/"), seconds))
+            "complete" if status == "0" else "stopped: " + error.replace("|", "/"), seconds,
+            fmt(cpu[name], "%.0f")))
     statements = [
         ("flow", "Figs. 1-2", "the flow of corn in front of the blade at 100-400 mm of travel "
          "(h = 200 mm); nonpolar MPM with psi = 2 deg resembles the observed flow most closely."),

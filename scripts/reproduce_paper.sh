@@ -3,12 +3,13 @@
 # and 6-13, then one PNG per figure beside the statement the paper makes about it
 # (OUT/report.md, docs/validation.md "The paper's figures").
 #
-#   scripts/reproduce_paper.sh [--quick] [--jobs N] [--out DIR]
+#   scripts/reproduce_paper.sh [--quick] [--jobs N] [--out DIR] [--resume]
 #
 #   --quick   every run on a 3x coarser mesh (40 x 24 for 120 x 70, 27 x 16 for 80 x 50):
 #             the same cases and figures in a few minutes; CI runs it. Not for conclusions.
 #   --jobs N  runs at the same time (default 2, this machine's cores); each run is one thread.
 #   --out DIR results (default out/paper, or out/paper_quick with --quick).
+#   --resume  run only the cases that have not completed in DIR (after a stop, or a fix).
 #
 # Each run's log is OUT/runs/NAME.log; a run that stops keeps what it wrote, the figures use
 # it, the report names it, and the script exits with 1 after plotting.
@@ -17,17 +18,19 @@ root=$(cd "$(dirname "$0")/.." && pwd)
 cd "$root"
 
 quick=false
+resume=false
 jobs=2
 out=
 while [ $# -gt 0 ]; do
   case "$1" in
     --quick) quick=true ;;
+    --resume) resume=true ;;
     --jobs) jobs=$2; shift ;;
     --jobs=*) jobs=${1#--jobs=} ;;
     --out) out=$2; shift ;;
     --out=*) out=${1#--out=} ;;
-    -h | --help) sed -n '2,15p' "$0" | sed 's/^# \{0,1\}//'; exit 0 ;;
-    *) echo "reproduce_paper.sh: unknown argument '$1' (valid: --quick, --jobs N, --out DIR)" >&2
+    -h | --help) sed -n '2,16p' "$0" | sed 's/^# \{0,1\}//'; exit 0 ;;
+    *) echo "reproduce_paper.sh: unknown argument '$1' (valid: --quick, --jobs N, --out DIR, --resume)" >&2
        exit 2 ;;
   esac
   shift
@@ -55,6 +58,7 @@ driver=$root/build/release/examples/example_03_flat_blade
 # shellcheck source=scripts/flat_blade_queue.sh
 source "$root/scripts/flat_blade_queue.sh"
 queue_mesh=$fine
+queue_resume=$resume
 # Each case: the paper's defaults (Table 1, h = 250 mm, psi = 2 deg, fixed floor, MUSL, linear
 # shape functions) unless its arguments say otherwise.
 # Figs. 1-3: h = 200 mm pushed 400 mm for psi = 2, 10, 26 deg. On a Coulomb floor (the fixed
@@ -89,10 +93,12 @@ queue_case h0.25_coarse "--depth 0.25 --mesh $coarse"
 queue_run "$driver" "$out/runs" "$jobs" paper
 wall=$queue_wall
 
-quick_flag=()
-[ "$quick" = true ] && quick_flag=(--quick)
-/usr/bin/python3 scripts/plot_paper.py "$out" --wall-seconds "$wall" --meshes "$fine" "$coarse" \
-  "${quick_flag[@]+"${quick_flag[@]}"}"
+flags=()
+[ "$quick" = true ] && flags+=(--quick)
+# The set's wall time means something only when this call ran all of it.
+[ "$resume" = false ] && flags+=(--wall-seconds "$wall")
+/usr/bin/python3 scripts/plot_paper.py "$out" --meshes "$fine" "$coarse" \
+  "${flags[@]+"${flags[@]}"}"
 if [ "$queue_failed" -gt 0 ]; then
   echo "reproduce_paper.sh: $queue_failed run(s) stopped; their figures show what they wrote ($out/report.md)" >&2
   exit 1
