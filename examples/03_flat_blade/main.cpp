@@ -130,7 +130,8 @@ int main(int argc, char** argv) {
       std::printf("  micro-inertia J = %g m^2, x %g in the dynamics%s\n", c.micro_inertia,
                   c.micro_inertia_scale,
                   c.micro_inertia_scale != 1.0
-                      ? " (quasi-static scaling: the rotational step bound no longer limits)"
+                      ? " (quasi-static scaling, --micro-inertia-scale: a shorter run, the "
+                        "draft within 0.03 %)"
                       : "");
     }
     if (c.dilatancy_cutoff > 0.0) {

@@ -1,9 +1,10 @@
 // The Cosserat continuum's rotational step bound against the operator it bounds: the lumped
 // operator on the nodal rotations (translations held), assembled here from the library's
 // kernels, the continuum's deformation increment and moment terms and the elastic model, its
-// largest eigenvalue found by power iteration (and checked by a dense solver); an explicit
-// engine run just below the bound and just above the true critical step; and the
-// micro-inertia scale (docs/theory/mpm.md, "Cosserat continuum").
+// largest eigenvalue found by power iteration (and checked by a dense solver); explicit steps
+// just below the bound and just above the critical step, of the grid update and of the
+// engine's USL and MUSL; and the micro-inertia scale (docs/theory/mpm.md, "Cosserat
+// continuum").
 #include <doctest/doctest.h>
 
 #include <Eigen/Dense>
@@ -30,6 +31,12 @@ constexpr double density = 778.0;   // the paper's corn
 constexpr double cell = 0.01;       // m
 constexpr double corn_j = 12.5e-6;  // m^2, the paper's J
 
+// Pseudo-random numbers in [-1/2, 1/2) (a linear congruential generator: fixed, portable).
+double next_uniform(std::uint32_t& seed) {
+  seed = seed * 1664525u + 1013904223u;
+  return static_cast<double>(seed) / 4294967296.0 - 0.5;
+}
+
 // Corn (Table 1 of the paper): E = 2.76 MPa, nu = 0.2, Gc = 2 G, l = 10 mm. On 10 mm cells
 // its two rotational stiffnesses are equal, 4 B / h^2 = 4 Gc = 9.2 MPa.
 Model corn(double length_scale = 0.01, double gc_over_g = 2.0) {
@@ -48,11 +55,10 @@ struct RotationalOperator {
 // Assembles the operator of the particles of a regular seeding of `patch` (per_cell x per_cell
 // per cell). Periodic: the grid has two cells of margin around the patch and nodes wrap modulo
 // the patch (no kernel reaches an edge); otherwise the patch is the whole grid, edges folded as
-// the kernels do there. A column of K is minus the nodal moments of a unit nodal rotation: its
-// rates at each particle (spin N, spin gradient grad N), the continuum's increment, the
+// the kernels do there. `disorder` > 0 moves each particle by up to +-disorder / 2 of its
+// spacing along each axis. A column of K is minus the nodal moments of a unit nodal rotation:
+// its rates at each particle (spin N, spin gradient grad N), the continuum's increment, the
 // model's stress, the continuum's moment terms.
-// `disorder` > 0 moves each particle of a periodic patch by up to +-disorder / 2 of its spacing
-// along each axis (pseudo-random, fixed seed).
 template <class Kernel>
 RotationalOperator rotational_operator(const Polar& polar, Index patch, int per_cell, bool periodic,
                                        double disorder = 0.0) {
@@ -75,13 +81,9 @@ RotationalOperator rotational_operator(const Polar& polar, Index patch, int per_
   const double mass_j = density * seeding.volume * polar.effective_micro_inertia();
   shape::Stencil<2, Kernel> s;
   std::uint32_t seed = 777;
-  auto uniform = [&seed] {
-    seed = seed * 1664525u + 1013904223u;
-    return static_cast<double>(seed) / 4294967296.0 - 0.5;
-  };
   for (Vec<2> x : seeding.positions) {
     if (disorder > 0.0) {
-      for (int d = 0; d < 2; ++d) x[d] += disorder * uniform() * cell / per_cell;
+      for (int d = 0; d < 2; ++d) x[d] += disorder * next_uniform(seed) * cell / per_cell;
     }
     s.compute(grid, x, seeding.half_width);
     for (std::size_t b = 0; b < s.node.size(); ++b) {
@@ -113,10 +115,7 @@ RotationalOperator rotational_operator(const Polar& polar, Index patch, int per_
 double power_iteration(const RotationalOperator& op, int iterations = 3000) {
   Eigen::VectorXd v(op.inertia.size());
   std::uint32_t seed = 12345;
-  for (Index i = 0; i < v.size(); ++i) {
-    seed = seed * 1664525u + 1013904223u;
-    v[i] = static_cast<double>(seed) / 4294967296.0 - 0.5;
-  }
+  for (Index i = 0; i < v.size(); ++i) v[i] = next_uniform(seed);
   double estimate = 0.0;
   for (int k = 0; k < iterations; ++k) {
     const Eigen::VectorXd kv = op.stiffness * v;
@@ -193,6 +192,14 @@ TEST_CASE("the rotational operator of a regular 2 x 2 patch has the derived eige
   const double gc4 = 4.0 * polar.model().cosserat_shear_modulus();
   const double expected = (gc4 + 0.25 * gc4) / (density * corn_j);
   CHECK(power_iteration(op) == doctest::Approx(expected).epsilon(1e-9));
+  // The operator is symmetric, and its smallest eigenvalue is the symbol's lowest corner,
+  // alternating along both axes: 4 B rho_q 2 / h^2 + 4 Gc rho_q^2 = 4 Gc (1/2 + 1/16).
+  CHECK((op.stiffness - op.stiffness.transpose()).norm() <= 1e-12 * op.stiffness.norm());
+  const Eigen::VectorXd scale = op.inertia.cwiseSqrt().cwiseInverse();
+  const Eigen::MatrixXd scaled = scale.asDiagonal() * op.stiffness * scale.asDiagonal();
+  CHECK(Eigen::SelfAdjointEigenSolver<Eigen::MatrixXd>(scaled, Eigen::EigenvaluesOnly)
+            .eigenvalues()
+            .minCoeff() == doctest::Approx(gc4 * (0.5 + 1.0 / 16.0) / (density * corn_j)));
   const double old_bound =
       (gc4 + 8.0 * polar.model().bending_modulus() / (cell * cell)) / (density * corn_j);
   CHECK(old_bound / expected == doctest::Approx(2.4).epsilon(1e-9));
@@ -237,10 +244,7 @@ namespace {
 double grid_update_growth(const RotationalOperator& op, double dt, int steps) {
   Eigen::VectorXd theta(op.inertia.size());
   std::uint32_t seed = 99;
-  for (Index i = 0; i < theta.size(); ++i) {
-    seed = seed * 1664525u + 1013904223u;
-    theta[i] = 2.0 * (static_cast<double>(seed) / 4294967296.0 - 0.5);
-  }
+  for (Index i = 0; i < theta.size(); ++i) theta[i] = 2.0 * next_uniform(seed);
   Eigen::VectorXd w = Eigen::VectorXd::Zero(theta.size());
   double largest = 0.0;
   for (int k = 0; k < steps; ++k) {
@@ -311,10 +315,7 @@ double engine_growth(double dt, int steps) {
   }
   auto& spin = sim.particles().template get<particles::field::MicroSpin>();
   std::uint32_t seed = 2024;
-  for (auto& value : spin) {
-    seed = seed * 1664525u + 1013904223u;
-    value = 2.0 * (static_cast<double>(seed) / 4294967296.0 - 0.5);
-  }
+  for (auto& value : spin) value = 2.0 * next_uniform(seed);
   double largest = 0.0;
   for (int k = 0; k < steps; ++k) {
     try {
