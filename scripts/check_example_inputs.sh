@@ -70,6 +70,10 @@ expect 1 "--average-to = 0.035 m (default): lies beyond --travel = 0.002 m (comm
   "$e3" --travel 0.002
 expect 1 "contradicts --material = mohr-coulomb" "$e3" --polar true --material mohr-coulomb
 expect 1 "applies to polar soil only" "$e3" --length-scale 0.02
+expect 1 "--micro-inertia-scale = 0 is outside the valid range (0, 1e+06]" "$e3" --polar true \
+  --micro-inertia-scale 0
+expect 1 "--micro-inertia-scale = 4 (command line): applies to polar soil only" "$e3" \
+  --micro-inertia-scale 4
 expect 1 "is not among the compositions built into this program" "$e3" --shape cubic-bspline \
   --integrator usf
 expect 1 "unknown option 'dpeth' (did you mean --depth?)" "$e3" --dpeth 0.2

@@ -177,7 +177,8 @@ Outcome run(const Case& c, RunContext& context,
     if constexpr (polar) {
       // Rotation held on the rig floor and sides, as the paper does.
       using BC = grid::BoundaryConditions<2>;
-      continuum::CosseratSettings settings{.micro_inertia = c.micro_inertia};
+      continuum::CosseratSettings settings{.micro_inertia = c.micro_inertia,
+                                           .micro_inertia_scale = c.micro_inertia_scale};
       for (int face : {BC::face(1, false), BC::face(0, false), BC::face(0, true)}) {
         settings.rotation_fixed[static_cast<std::size_t>(face)] = true;
       }
