@@ -218,6 +218,10 @@ def plot_free_surfaces(runs, out):
                 continue
             cell = run.number("grid-length") / run.number("cells-x")
             x, _ = particles_of(path)
+            outline = blade_outline(path)
+            if outline is not None:
+                # The soil the blade pushes: a particle thrown behind it is not its surface.
+                x = x[x[:, 0] > outline[:, 0].max()]
             xs, ys = free_surface(x, cell)
             ax.plot(xs, ys * 1000, "-", label="psi = %s deg" % run.case["psi"])
             ahead = xs > x[:, 0].min() + 0.05
