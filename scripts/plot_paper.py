@@ -84,10 +84,15 @@ class Run:
         return self.summary is not None
 
     def average_draft(self):
-        """The 15-35 mm average draft [N/m] the driver reports, or None if it stopped before."""
-        if self.summary is None:
+        """The 15-35 mm average draft [N/m] the driver reports; for a run that stopped after
+        the window, the mean of its recorded forces there; None if it stopped before."""
+        if self.summary is not None:
+            return float(self.summary["average_draft_N_per_m"][0])
+        start, end = self.number("average-from"), self.number("average-to")
+        if self.forces is None or self.travel_reached < end:
             return None
-        return float(self.summary["average_draft_N_per_m"][0])
+        d = self.forces["displacement_m"]
+        return float(self.forces["draft_N_per_m"][(d >= start) & (d <= end)].mean())
 
     def sokolovski_draft(self):
         return None if self.summary is None else float(self.summary["sokolovski_draft_N_per_m"][0])
