@@ -5,9 +5,10 @@ collapse pressure (2 + pi) c; a second panel shows the limit pressure of each ru
 the cell size. A second PNG shows the mechanism at the end of the finest mesh's runs (the
 particles coloured by their plastic shear strain) beside Prandtl's slip lines.
 
-usage: /usr/bin/python3 scripts/plot_strip_footing.py [DIR] [--output PNG]
-DIR defaults to strip_footing; the PNGs default to DIR/strip_footing.png and
-DIR/strip_footing_mechanism.png (beside --output when it is given).
+usage: /usr/bin/python3 scripts/plot_strip_footing.py [DIR ...] [--output PNG]
+DIR defaults to strip_footing; several DIRs (runs of different meshes) are drawn together. The
+PNGs default to the first DIR's strip_footing.png and strip_footing_mechanism.png (beside
+--output when it is given).
 """
 import argparse
 import csv
@@ -37,17 +38,22 @@ def read_csv(path):
 
 def main():
     parser = argparse.ArgumentParser(description=__doc__.splitlines()[0])
-    parser.add_argument("directory", nargs="?", default="strip_footing")
+    parser.add_argument("directories", nargs="*", default=["strip_footing"])
     parser.add_argument("--output", default=None, help="PNG file (default DIR/strip_footing.png)")
     args = parser.parse_args()
-    directory = pathlib.Path(args.directory)
-    curves = sorted(directory.glob("curve_n*_*.csv"),
-                    key=lambda p: (int(re.search(r"_n(\d+)_", p.name).group(1)), p.name))
-    summary_path = directory / "summary.csv"
-    if not curves or not summary_path.exists():
-        sys.exit(f"error: no curve_n*_*.csv / summary.csv in '{directory}'; "
-                 "run example_05_strip_footing --out DIR first")
-    summary = read_csv(summary_path)
+    directories = [pathlib.Path(d) for d in args.directories]
+    curves, summary = [], {}
+    for directory in directories:
+        summary_path = directory / "summary.csv"
+        found = list(directory.glob("curve_n*_*.csv"))
+        if not found or not summary_path.exists():
+            sys.exit(f"error: no curve_n*_*.csv / summary.csv in '{directory}'; "
+                     "run example_05_strip_footing --out DIR first")
+        curves += found
+        for key, values in read_csv(summary_path).items():
+            summary.setdefault(key, []).extend(values)
+    curves.sort(key=lambda p: (int(re.search(r"_n(\d+)_", p.name).group(1)), p.name))
+    directory = directories[0]
 
     meshes = sorted({int(re.search(r"_n(\d+)_", p.name).group(1)) for p in curves})
     colours = plt.rcParams["axes.prop_cycle"].by_key()["color"]
@@ -92,7 +98,9 @@ def main():
     output = pathlib.Path(args.output) if args.output else directory / "strip_footing.png"
     fig.savefig(output, dpi=110)
     print(f"wrote {output}")
-    plot_mechanism(directory, meshes[-1], output.with_name(output.stem + "_mechanism.png"))
+    finest = [d for d in directories if list(d.glob(f"particles_n{meshes[-1]}_*.csv"))]
+    if finest:
+        plot_mechanism(finest[0], meshes[-1], output.with_name(output.stem + "_mechanism.png"))
 
 
 def prandtl_lines(b, top):
@@ -120,7 +128,7 @@ def plot_mechanism(directory, mesh, output):
         top = max(yy - uy for yy, uy in zip(y, particles["uy_m"]))  # the surface at the start
         settlement = max(-uy for uy in particles["uy_m"])  # the wedge under the footing
         b = 0.5  # the footing's half-width at the example's default B = 1 m
-        shown = ax.scatter(x, y, c=particles["plastic_shear_strain"], s=0.5 if len(x) > 20000
+        shown = ax.scatter(x, y, c=particles["plastic_shear_strain"], s=1.6 if len(x) > 20000
                            else 2.5, vmin=0, vmax=0.3, cmap="viridis", linewidths=0)
         for k, (lx, ly) in enumerate(prandtl_lines(b, top)):
             ax.plot(lx, ly, color="red", linewidth=1.0, linestyle="--", zorder=3,

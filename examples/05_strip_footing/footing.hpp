@@ -162,13 +162,14 @@ struct Watch {
   std::function<void(const Sample&)> sample;  // every sample, as it is taken
 };
 
-// Runs the case with the continuum's anti-locking policy (antilocking::None or FBar).
-template <class AntiLocking>
+// Runs the case with the continuum's anti-locking policy (antilocking::None or FBar) and the
+// shape functions Kernel (the paper's linear by default).
+template <class AntiLocking, class Kernel = cosmpm::shape::Linear>
 Result run(const Case& c, const Watch& watch = {}) {
   using namespace cosmpm;
   validate(c);
   using Continuum = continuum::Classical<Soil, AntiLocking>;
-  using Sim = Simulation<2, shape::Linear, Continuum, contact::RigidContact<2>, integrator::MUSL>;
+  using Sim = Simulation<2, Kernel, Continuum, contact::RigidContact<2>, integrator::MUSL>;
   const double h = c.cell(), b = c.half_width();
   const Cells n = cells_of(c);
   const Index nx = n.x, ny_soil = n.soil, ny_air = n.air;

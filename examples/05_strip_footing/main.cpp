@@ -36,6 +36,7 @@ struct Settings {
   std::vector<int> meshes{4, 8, 16};  // cells per footing half-width b
   std::string antilocking = "both";
   std::string footing = "smooth";
+  std::string shape = "linear";
   // The limit pressure: the mean over settlements in [limit_from, limit_to] B, after the
   // collapse (the plateau starts near 0.025 B on every mesh) and before the footing has sunk
   // far (unset: to the end of the run).
@@ -86,6 +87,9 @@ void declare(io::Options& o, Settings& s) {
   o.choice("footing", s.footing, {"smooth", "rough"},
            "footing base: smooth (frictionless contact) or rough (no slip); both collapse at "
            "(2 + pi) c on a weightless layer");
+  o.choice("shape", s.shape, {"linear", "gimp"},
+           "shape functions: linear (bilinear, the paper's) or gimp (uGIMP: smoother cell "
+           "crossings)");
   o.group("Soil (Tresca: MohrCoulomb with phi = psi = 0)");
   o.real("cohesion", c.cohesion, positive, "Pa", "undrained strength c");
   o.real("stiffness-ratio", c.stiffness_ratio, positive, "", "E / c");
@@ -130,7 +134,7 @@ struct Row {
 };
 
 // One run, its curve written sample by sample (an unstable run keeps what it wrote).
-template <class AntiLocking>
+template <class AntiLocking, class Kernel>
 Row run_one(const strip_footing::Case& c, const std::string& policy, double from, double to,
             io::RunDirectory& folder) {
   char name[64];
@@ -146,7 +150,7 @@ Row run_one(const strip_footing::Case& c, const std::string& policy, double from
   Row row;
   row.cells = c.cells_per_half_width;
   row.policy = policy;
-  row.result = strip_footing::run<AntiLocking>(
+  row.result = strip_footing::run<AntiLocking, Kernel>(
       c, {.progress = [&](double time, double, std::int64_t step) { progress.update(time, step); },
           .sample =
               [&](const strip_footing::Sample& sample) {
@@ -184,10 +188,10 @@ int run(const Settings& s, const io::Options& options) {
       "example_05_strip_footing", options.given("out") ? "--out" : "--out (default)");
   std::printf(
       "Strip footing on a weightless Tresca layer: %s footing, B = %g m, c = %g Pa, E = %g c, "
-      "nu = %g,\nvelocity %g m/s to a settlement of %g B, damping %g, FLIP fraction %g; "
-      "(2 + pi) c = %.4f c\n",
+      "nu = %g,\nvelocity %g m/s to a settlement of %g B, damping %g, FLIP fraction %g, %s "
+      "shape functions; (2 + pi) c = %.4f c\n",
       s.footing.c_str(), c.width, c.cohesion, c.stiffness_ratio, c.poisson_ratio, c.velocity,
-      c.settlement, c.damping, c.flip_fraction, strip_footing::prandtl_factor);
+      c.settlement, c.damping, c.flip_fraction, s.shape.c_str(), strip_footing::prandtl_factor);
   std::printf("%6s %10s %8s %10s %12s %10s %10s %9s\n", "b/h", "h/B", "policy", "q/c", "error [%]",
               "particles", "steps", "time [s]");
   std::vector<std::vector<double>> summary;
@@ -207,14 +211,23 @@ int run(const Settings& s, const io::Options& options) {
                    "error_percent", "particles", "steps", "seconds"},
                   summary);
   };
-  for (const int n : s.meshes) {
-    c.cells_per_half_width = n;
-    if (s.antilocking != "fbar") {
-      report(run_one<cosmpm::antilocking::None>(c, "none", s.limit_from, limit_to, folder));
+  const auto sweep = [&]<class Kernel>() {
+    for (const int n : s.meshes) {
+      c.cells_per_half_width = n;
+      if (s.antilocking != "fbar") {
+        report(
+            run_one<cosmpm::antilocking::None, Kernel>(c, "none", s.limit_from, limit_to, folder));
+      }
+      if (s.antilocking != "none") {
+        report(
+            run_one<cosmpm::antilocking::FBar, Kernel>(c, "fbar", s.limit_from, limit_to, folder));
+      }
     }
-    if (s.antilocking != "none") {
-      report(run_one<cosmpm::antilocking::FBar>(c, "fbar", s.limit_from, limit_to, folder));
-    }
+  };
+  if (s.shape == "gimp") {
+    sweep.template operator()<cosmpm::shape::GIMP>();
+  } else {
+    sweep.template operator()<cosmpm::shape::Linear>();
   }
   std::printf(
       "limit pressure: mean q / c over settlements in [%g, %g] B\nCSV files in %s\n"
