@@ -36,9 +36,10 @@ TEST_CASE("Material parameters out of range give a cosmpm::Error naming value an
   expect_error([] { MohrCoulomb<double>(kE, 0.5, 26, 2); },
                {"MohrCoulomb", "poisson_ratio = 0.5", "(-1, 0.5)"});
   expect_error([] { MohrCoulomb<double>(kE, -1.0, 26, 2); }, {"poisson_ratio = -1", "(-1, 0.5)"});
+  // phi = 0 is Tresca and needs cohesion (mohr_coulomb_tresca.test.cpp).
   expect_error([] { MohrCoulomb<double>(kE, kNu, 0, 0); },
-               {"MohrCoulomb", "friction_angle_deg = 0", "(0, 90)"});
-  expect_error([] { MohrCoulomb<double>(kE, kNu, 90, 2); }, {"friction_angle_deg = 90", "(0, 90)"});
+               {"MohrCoulomb", "friction_angle_deg = 0", "cohesion = 0", "(0, inf)", "(0, 90)"});
+  expect_error([] { MohrCoulomb<double>(kE, kNu, 90, 2); }, {"friction_angle_deg = 90", "[0, 90)"});
   expect_error([] { MohrCoulomb<double>(kE, kNu, 26, 30); },
                {"MohrCoulomb", "dilatancy_angle_deg = 30", "[0, 26]"});
   expect_error([] { MohrCoulomb<double>(kE, kNu, 26, -1); },

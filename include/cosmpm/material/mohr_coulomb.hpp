@@ -13,6 +13,9 @@
 // closed-form in-plane 2x2 problem (detail/principal_2d.hpp); in 3D the symmetric 3x3
 // eigenproblem (detail/principal_3d.hpp), skipped for trials inside the Drucker-Prager cone
 // inscribed in the yield surface.
+//
+// phi = 0 with psi = 0 and c > 0 is Tresca (undrained clay): f = s1 - s3 - 2 c, no apex, isochoric
+// flow; the return's edge regions then keep the mean stress (detail/mohr_coulomb_return.hpp).
 #include <Eigen/Core>
 #include <algorithm>
 #include <array>
@@ -38,10 +41,11 @@ namespace cosmpm::material {
 struct MohrCoulombParameters {
   double youngs_modulus = detail::unset;       // E (Pa), > 0
   double poisson_ratio = detail::unset;        // nu, -1 < nu < 0.5
-  double friction_angle_deg = detail::unset;   // phi, 0 < phi < 90
+  double friction_angle_deg = detail::unset;   // phi, 0 < phi < 90; 0 (Tresca) needs c > 0
   double dilatancy_angle_deg = detail::unset;  // psi, 0 <= psi <= phi
-  double cohesion = 0.0;                       // c (Pa), >= 0
-  // The largest principal stress allowed (Pa), in [0, c cot(phi)]; none: the apex c cot(phi).
+  double cohesion = 0.0;                       // c (Pa), >= 0; > 0 when phi = 0
+  // The largest principal stress allowed (Pa), in [0, c cot(phi)]; none: the apex c cot(phi)
+  // (none at phi = 0: any cut-off >= 0).
   std::optional<double> tension_cutoff = std::nullopt;
   // Dilatancy cut-off: the plastic shear strain (state.plastic_shear_strain, sqrt(2 e:e) of the
   // plastic strain deviator) from which the flow is isochoric (psi = 0), as a dense granular
@@ -72,16 +76,17 @@ class MohrCoulomb {
                                                  T(parameters.poisson_ratio))) {
     const T phi = T(parameters.friction_angle_deg), psi = T(parameters.dilatancy_angle_deg);
     const T cohesion = T(parameters.cohesion);
-    detail::check_friction_angles("MohrCoulomb", static_cast<double>(phi),
-                                  static_cast<double>(psi));
     require_non_negative("MohrCoulomb", "cohesion", static_cast<double>(cohesion));
+    check_strength(static_cast<double>(phi), static_cast<double>(psi),
+                   static_cast<double>(cohesion));
     const T sin_phi = std::sin(T(degrees_to_radians(static_cast<double>(phi))));
     const T sin_psi = std::sin(T(degrees_to_radians(static_cast<double>(psi))));
     sin_phi_ = sin_phi;
     cos_phi_ = std::sqrt(1 - sin_phi * sin_phi);
     const T k = (1 + sin_phi) / (1 - sin_phi);
     const T m = (1 + sin_psi) / (1 - sin_psi);
-    const T apex = cohesion * cos_phi_ / sin_phi;
+    // Tresca (phi = 0) has no apex: the return's edges run without end.
+    const T apex = phi == T(0) ? std::numeric_limits<T>::infinity() : cohesion * cos_phi_ / sin_phi;
     T cutoff = apex;
     if (parameters.tension_cutoff) {
       require_in_range("MohrCoulomb", "tension_cutoff",
@@ -117,7 +122,7 @@ class MohrCoulomb {
   T friction_angle_deg() const { return T(parameters_.friction_angle_deg); }
   T dilatancy_angle_deg() const { return T(parameters_.dilatancy_angle_deg); }
   T cohesion() const { return T(parameters_.cohesion); }
-  T apex_stress() const { return return_.apex(); }       // c cot(phi): all principal stresses
+  T apex_stress() const { return return_.apex(); }       // c cot(phi) (+inf at phi = 0)
   T tension_cutoff() const { return return_.cutoff(); }  // largest principal stress allowed
   // The plastic shear strain from which the flow is isochoric; infinity: none.
   double dilatancy_cutoff_strain() const { return dilatancy_cutoff_strain_; }
@@ -175,6 +180,22 @@ class MohrCoulomb {
     T gamma;
     return return_.template plastic_return<WithMap, Cutoff>(
         trial[0], trial[1], trial[2], f, result[0], result[1], result[2], gamma, map);
+  }
+
+  // 0 < phi < 90 and 0 <= psi <= phi as for every frictional model, or the Tresca limit phi = 0
+  // (then psi = 0) with c > 0: without friction or cohesion there is no strength.
+  static void check_strength(double phi, double psi, double cohesion) {
+    if (!(phi >= 0.0 && phi < 90.0)) {
+      throw Error("MohrCoulomb: friction_angle_deg = " + cosmpm::detail::format_number(phi) +
+                  " is outside the valid range [0, 90) (0 only with cohesion > 0: Tresca)");
+    }
+    if (phi == 0.0 && !(cohesion > 0.0)) {
+      throw Error("MohrCoulomb: friction_angle_deg = 0 with cohesion = " +
+                  cosmpm::detail::format_number(cohesion) +
+                  " has no strength: at friction_angle_deg = 0 (Tresca) cohesion must be in "
+                  "(0, inf); without cohesion friction_angle_deg must be in (0, 90)");
+    }
+    require_in_range("MohrCoulomb", "dilatancy_angle_deg", psi, 0.0, phi, Bounds::closed);
   }
 
   static const MohrCoulombParameters& checked(const MohrCoulombParameters& p) {

@@ -12,10 +12,17 @@
 // edge s2 = s3 (line apex + t (1, k, k)); the apex c cot(phi), the default tension cut-off; and,
 // with a cut-off below the apex, the tension regions (associated flow on s_i <= cut-off), solved
 // by the general active-set return (multisurface_return.hpp).
+//
+// phi = 0 (Tresca, k = m = 1, c > 0): the edges are parallel to the hydrostatic axis and there
+// is no apex (apex = +inf). Each edge line is then anchored at a finite point of it, (c, c, -c)
+// and (c, -c, -c), instead of the apex, and the edge return has no end (t unbounded): it keeps
+// the trial's mean stress. The plane region is unchanged. With phi > 0 the anchor is the apex
+// and t <= 0, the same arithmetic as without the generalisation.
 #include <Eigen/Core>
 #include <Eigen/Geometry>
 #include <algorithm>
 #include <cmath>
+#include <limits>
 
 #include "cosmpm/material/detail/isotropic_elasticity.hpp"
 #include "cosmpm/material/detail/multisurface_return.hpp"
@@ -37,8 +44,8 @@ class MohrCoulombReturn {
   using Mat3 = Eigen::Matrix<T, 3, 3>;
 
   MohrCoulombReturn() = default;
-  // k, m as above, the apex stress c cot(phi) and the cut-off (the largest principal stress
-  // allowed, at most the apex).
+  // k, m as above, the apex stress c cot(phi) (+inf for phi = 0: no apex) and the cut-off (the
+  // largest principal stress allowed, at most the apex).
   MohrCoulombReturn(const IsotropicElasticity<T>& elastic, T k, T m, T offset, T apex, T cutoff)
       : elastic_(elastic),
         two_shear_(2 * elastic.shear),
@@ -46,7 +53,8 @@ class MohrCoulombReturn {
         offset_(offset),
         apex_(apex),
         cutoff_(cutoff),
-        has_cutoff_(cutoff < apex) {
+        has_cutoff_(cutoff < apex),
+        has_apex_(std::isfinite(apex)) {
     // Yield plane f = a . s - offset, flow D b.
     normal_ = Vec3(k, 0, -1);
     const Vec3 b_plane(m, 0, -1);
@@ -68,6 +76,16 @@ class MohrCoulombReturn {
     edge_e_direction_ = Vec3(1, k, k);
     const Vec3 edge_e_normal = flow_plane.cross(elastic_times(b_third));
     edge_e_scaled_normal_ = edge_e_normal / edge_e_normal.dot(edge_e_direction_);
+    // Where t = 0 on each edge line: the apex, or without one (k = 1) a point of the line.
+    if (has_apex_) {
+      edge_c_anchor_ = edge_e_anchor_ = Vec3::Constant(apex);
+      edge_end_ = T(0);
+    } else {
+      const T c = offset / 2;  // offset = 2 c sqrt(k), k = 1
+      edge_c_anchor_ = Vec3(c, c, -c);
+      edge_e_anchor_ = Vec3(c, -c, -c);
+      edge_end_ = std::numeric_limits<T>::infinity();
+    }
     // The general solver for a cut-off below the apex: the three Mohr-Coulomb planes that can be
     // active for sorted stresses and the three associated cut-off planes.
     cutoff_planes_.add(normal_, offset, flow_plane);
@@ -84,9 +102,10 @@ class MohrCoulombReturn {
     inscribed_slope_ = 2 * std::sqrt((k * k + k + 1) / 3);
   }
 
-  T apex() const { return apex_; }
+  T apex() const { return apex_; }  // +inf without an apex (phi = 0)
   T cutoff() const { return cutoff_; }
   bool has_cutoff() const { return has_cutoff_; }  // below the apex
+  bool has_apex() const { return has_apex_; }
 
   // k s1 - s3 - 2 c sqrt(k) of sorted principal stresses.
   T yield(T s1, T s3) const { return k_ * s1 - s3 - offset_; }
@@ -121,7 +140,8 @@ class MohrCoulombReturn {
   }
 
   // The regions of the cone with the cut-off at the apex: the yield plane first; if its result
-  // leaves the sorted sector, the edge line on that side, or the apex beyond it.
+  // leaves the sorted sector, the edge line on that side, or the apex beyond it (t > edge_end_,
+  // never without an apex).
   template <bool WithMap>
   MohrCoulombRegion cone(T s1, T s2, T s3, T f, T& r1, T& r2, T& r3, T& gamma, Mat3* map) const {
     r1 = s1 - plane_step_[0] * f;
@@ -135,13 +155,15 @@ class MohrCoulombReturn {
     const bool compression_side = r1 < r2;
     const Vec3& normal = compression_side ? edge_c_scaled_normal_ : edge_e_scaled_normal_;
     const Vec3& direction = compression_side ? edge_c_direction_ : edge_e_direction_;
-    const T along = normal[0] * (s1 - apex_) + normal[1] * (s2 - apex_) + normal[2] * (s3 - apex_);
-    const T t = std::min(T(0), along);
-    r1 = apex_ + t * direction[0];
-    r2 = apex_ + t * direction[1];
-    r3 = apex_ + t * direction[2];
+    const Vec3& anchor = compression_side ? edge_c_anchor_ : edge_e_anchor_;
+    const T along =
+        normal[0] * (s1 - anchor[0]) + normal[1] * (s2 - anchor[1]) + normal[2] * (s3 - anchor[2]);
+    const T t = std::min(edge_end_, along);
+    r1 = anchor[0] + t * direction[0];
+    r2 = anchor[1] + t * direction[1];
+    r3 = anchor[2] + t * direction[2];
     gamma = deviator_gamma(s1 - r1, s2 - r2, s3 - r3);
-    const bool on_edge = along <= T(0);
+    const bool on_edge = along <= edge_end_;
     if constexpr (WithMap) {
       if (on_edge) {
         *map = direction * normal.transpose();
@@ -164,7 +186,8 @@ class MohrCoulombReturn {
       if (r1 <= cutoff_) return region;
     }
     const Vec3 trial(s1, s2, s3);
-    const T tolerance = T(1e-12) * std::max({trial.cwiseAbs().maxCoeff(), apex_, T(1)});
+    const T scale = has_apex_ ? apex_ : std::max(cutoff_, offset_);
+    const T tolerance = T(1e-12) * std::max({trial.cwiseAbs().maxCoeff(), scale, T(1)});
     Vec3 result;
     if (!multisurface_return(cutoff_planes_, trial, tolerance, result, WithMap ? map : nullptr)) {
       // Unreachable for valid parameters: the cut-off octant always admits a return.
@@ -195,12 +218,15 @@ class MohrCoulombReturn {
   T apex_{};
   T cutoff_{};
   bool has_cutoff_ = false;
+  bool has_apex_ = true;
   Vec3 normal_ = Vec3::Zero();
   Vec3 plane_step_ = Vec3::Zero();
   T plane_gamma_{};
   T inscribed_slope_{};
   Vec3 edge_c_direction_ = Vec3::Zero(), edge_c_scaled_normal_ = Vec3::Zero();
   Vec3 edge_e_direction_ = Vec3::Zero(), edge_e_scaled_normal_ = Vec3::Zero();
+  Vec3 edge_c_anchor_ = Vec3::Zero(), edge_e_anchor_ = Vec3::Zero();
+  T edge_end_{};  // t at the apex along both edges (0), +inf without an apex
   PlaneSet<T> cutoff_planes_;
 };
 
