@@ -26,7 +26,10 @@ struct Case {
   double dilatancy_angle_deg = 2.0;  // the paper also runs 10 and 26
   double dilatancy_cutoff = 0.0;     // plastic shear strain; 0: none (the paper)
   double cohesion = 0.0;             // Pa
-  double wall_friction_deg = 14.0;   // corn on steel
+  // Mohr-Coulomb: a point that dilated at the apex stays stress-free until compression closes
+  // the gap (MohrCoulombParameters::separation).
+  bool separation = false;
+  double wall_friction_deg = 14.0;  // corn on steel
   // The rig floor under the soil: "fixed" (the paper's: no velocity at the floor nodes) or
   // "friction" (a Coulomb wall, no penetration, friction angle floor_friction_deg), on which
   // the blade scrapes the floor clean.
@@ -109,6 +112,7 @@ struct Case {
       name << "_" << cone;
     }
     if (dilatancy_cutoff > 0.0) name << "_cutoff" << dilatancy_cutoff;
+    if (separation != Case{}.separation) name << (separation ? "_sep" : "_nosep");
     if (material == "drucker-prager") name << "_dp";
     if (shape != "linear") name << "_" << shape;
     if (integrator != "musl") name << "_" << integrator;
@@ -139,6 +143,10 @@ inline void declare_options(Options& o, Case& c) {
          "0), a dilatancy cut-off at the critical state; 0: none (the paper's perfect "
          "plasticity)");
   o.real("cohesion", c.cohesion, {0.0, 1e9, Bounds::closed}, "Pa", "cohesion c");
+  o.flag("separation", c.separation,
+         "Mohr-Coulomb only, cohesion 0: a point that dilated at the apex (its grains apart) "
+         "stays stress-free until compression has closed the gap, instead of being stressed "
+         "again from its swollen volume");
   o.real("delta", c.wall_friction_deg, {0.0, 60.0, Bounds::closed}, "deg",
          "soil-blade friction angle, at most --phi");
   o.group("Cosserat soil (with --polar true)");
@@ -313,6 +321,9 @@ inline void validate(const Options& o, Case& c) {
   }
   if (c.polar && c.antilocking != "none") {
     o.fail("antilocking", "applies to nonpolar soil only (--polar true); leave it at none");
+  }
+  if (c.separation && (c.material != "mohr-coulomb" || c.cohesion != 0.0)) {
+    o.fail("separation", "is implemented for --material mohr-coulomb with --cohesion 0 only");
   }
   if (c.dilatancy_cutoff > 0.0 && c.material != "mohr-coulomb") {
     o.fail("dilatancy-cutoff", "is implemented for --material mohr-coulomb only; leave it at 0");

@@ -134,6 +134,9 @@ int main(int argc, char** argv) {
                         "draft within 0.03 %)"
                       : "");
     }
+    if (c.separation) {
+      std::printf("  separation: stress-free where the grains came apart, until compressed\n");
+    }
     if (c.dilatancy_cutoff > 0.0) {
       std::printf("  dilatancy cut-off: psi = 0 from a plastic shear strain of %g\n",
                   c.dilatancy_cutoff);

@@ -68,6 +68,7 @@ Model make_model(const Case& c) {
                                       .dilatancy_angle_deg = c.dilatancy_angle_deg,
                                       .cohesion = c.cohesion};
     if (c.dilatancy_cutoff > 0.0) p.dilatancy_cutoff_strain = c.dilatancy_cutoff;
+    p.separation = c.separation;
     return Model(p);
   } else if constexpr (std::is_same_v<Model, DruckerPrager>) {
     return Model(c.youngs_modulus, c.poisson_ratio, c.friction_angle_deg, c.dilatancy_angle_deg,

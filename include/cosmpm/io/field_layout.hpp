@@ -262,7 +262,7 @@ std::string state_units(std::size_t k) {
     return std::string(State::units[k]);
   } else {
     const std::string_view label = State::labels[k];
-    if (label == "plastic_shear_strain" || label == "plastic") return "1";
+    if (label == "plastic_shear_strain" || label == "plastic" || label == "separation") return "1";
     return "unknown";
   }
 }
@@ -274,6 +274,7 @@ std::string state_description(std::size_t k) {
     const std::string_view label = State::labels[k];
     if (label == "plastic_shear_strain") return "accumulated equivalent plastic shear strain";
     if (label == "plastic") return "1 if the last update returned to the yield surface, else 0";
+    if (label == "separation") return "volumetric strain by which the grains have come apart";
     return "";
   }
 }

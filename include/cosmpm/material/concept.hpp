@@ -32,8 +32,12 @@ struct NoState {
 struct PlasticState {
   double plastic_shear_strain = 0.0;  // accumulated equivalent plastic shear strain
   double plastic = 0.0;               // 1 if the last update returned to the yield surface
-  static constexpr std::array<std::string_view, 2> labels{"plastic_shear_strain", "plastic"};
-  std::array<double, 2> values() const { return {plastic_shear_strain, plastic}; }
+  // Volumetric strain by which a cohesionless packing has come apart (models with separation,
+  // e.g. MohrCoulombParameters::separation): stress-free until compression closes it.
+  double separation = 0.0;
+  static constexpr std::array<std::string_view, 3> labels{"plastic_shear_strain", "plastic",
+                                                          "separation"};
+  std::array<double, 3> values() const { return {plastic_shear_strain, plastic, separation}; }
 };
 
 // A model of a material point. Contract, checked for every model by the conformance kit

@@ -52,6 +52,12 @@ struct MohrCoulombParameters {
   // soil stops dilating at its critical state; in simple shear the volume then grows by about
   // this times tan(psi). > 0; none: psi throughout (perfect plasticity dilates without end).
   std::optional<double> dilatancy_cutoff_strain = std::nullopt;
+  // Separation of a cohesionless packing (c = 0): the volumetric strain an apex return takes
+  // (p_trial / K) is free volume, the grains apart; the point stays stress-free until
+  // compression has closed it (state.separation), as a granular gas carries no stress
+  // (Dunatunga and Kamrin 2015). Without it a point that dilated at the apex is stressed again
+  // at its first compression, from a volume many times its own.
+  bool separation = false;
 };
 
 template <class T = double, int Dim = 2>
@@ -96,6 +102,13 @@ class MohrCoulomb {
     }
     return_ =
         detail::MohrCoulombReturn<T>(elastic_, k, m, 2 * cohesion * std::sqrt(k), apex, cutoff);
+    if (parameters.separation &&
+        !(cohesion == T(0) && return_.has_apex() && !return_.has_cutoff())) {
+      throw Error("MohrCoulomb: separation needs a cohesionless packing (cohesion = " +
+                  cosmpm::detail::format_number(parameters.cohesion) +
+                  ", valid: 0) with its apex at zero stress (tension_cutoff none or 0)");
+    }
+    separation_ = parameters.separation;
     if (parameters.dilatancy_cutoff_strain) {
       require_positive("MohrCoulomb", "dilatancy_cutoff_strain",
                        *parameters.dilatancy_cutoff_strain);
@@ -139,17 +152,28 @@ class MohrCoulomb {
   }
 
   void update(stress_type& stress, state_type& state, const strain_type& de) const {
+    if (separation_) [[unlikely]] {
+      (void)update_separating<false>(stress, state, de, nullptr);
+      return;
+    }
     (void)update_impl<false>(stress, state, de, nullptr);
   }
+  // With separation, the step that closes the gap has the tangent of its loaded part.
   void update(stress_type& stress, state_type& state, const strain_type& de,
               tangent_type& tangent) const {
+    if (separation_) [[unlikely]] {
+      (void)update_separating<true>(stress, state, de, &tangent);
+      return;
+    }
     (void)update_impl<true>(stress, state, de, &tangent);
   }
   // The same update, reporting which return region it used (tests, diagnostics).
   MohrCoulombRegion update_region(stress_type& stress, state_type& state,
                                   const strain_type& de) const {
+    if (separation_) return update_separating<false>(stress, state, de, nullptr);
     return update_impl<false>(stress, state, de, nullptr);
   }
+  bool separates() const { return separation_; }
 
   tangent_type elastic_tangent() const { return elastic_.template tangent<n>(); }
 
@@ -250,6 +274,51 @@ class MohrCoulomb {
     return region;
   }
 
+  // sqrt(2 e:e) of the deviator e of a strain increment (tensor shear): the measure of
+  // state.plastic_shear_strain.
+  static T deviatoric_norm(const strain_type& de) {
+    const T mean = (de[0] + de[1] + de[2]) / 3;
+    T ee = 0;
+    for (int c = 0; c < 3; ++c) ee += (de[c] - mean) * (de[c] - mean);
+    for (int c = 3; c < n; ++c) ee += 2 * de[c] * de[c];
+    return std::sqrt(2 * ee);
+  }
+
+  // update_impl with separation: while the grains are apart the increment only opens or
+  // closes the gap (all of it plastic); the part of an increment left once the gap has closed
+  // loads the packing from zero stress; an apex return adds its plastic volumetric strain,
+  // p_trial / K, to the gap.
+  template <bool WithTangent>
+  [[gnu::noinline]] MohrCoulombRegion update_separating(stress_type& stress, state_type& state,
+                                                        const strain_type& de,
+                                                        tangent_type* tangent) const {
+    const T volumetric = de[0] + de[1] + de[2];
+    strain_type loading = de;
+    if (state.separation > 0.0) {
+      const T gap = T(state.separation);
+      if (volumetric >= -gap) {
+        state.separation = static_cast<double>(gap + volumetric);
+        state.plastic_shear_strain += static_cast<double>(deviatoric_norm(de));
+        state.plastic = 1.0;
+        stress.setZero();
+        if constexpr (WithTangent) tangent->setZero();
+        return MohrCoulombRegion::separated;
+      }
+      const T closing = -gap / volumetric;  // the part of the increment that closes the gap
+      state.plastic_shear_strain += static_cast<double>(closing * deviatoric_norm(de));
+      state.separation = 0.0;
+      stress.setZero();
+      loading = (1 - closing) * de;
+    }
+    const T bulk = elastic_.bulk();
+    const T trial_mean =
+        (stress[0] + stress[1] + stress[2]) / 3 + bulk * (loading[0] + loading[1] + loading[2]);
+    const MohrCoulombRegion region = update_impl<WithTangent>(stress, state, loading, tangent);
+    if (region == MohrCoulombRegion::apex && trial_mean > 0)
+      state.separation += static_cast<double>(trial_mean / bulk);
+    return region;
+  }
+
   template <bool WithTangent>
   [[gnu::noinline]] MohrCoulombRegion update_with_cutoff(stress_type& stress, state_type& state,
                                                          const strain_type& de,
@@ -263,6 +332,7 @@ class MohrCoulomb {
   T cos_phi_{};
   detail::MohrCoulombReturn<T> return_;
   double dilatancy_cutoff_strain_ = std::numeric_limits<double>::infinity();
+  bool separation_ = false;
   detail::MohrCoulombReturn<T> isochoric_return_;  // psi = 0, past the dilatancy cut-off
 };
 

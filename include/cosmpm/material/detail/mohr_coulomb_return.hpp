@@ -30,8 +30,16 @@
 namespace cosmpm::material {
 
 // Where a return mapping ended; `tension` is any return that involves the cut-off planes below
-// the apex.
-enum class MohrCoulombRegion { elastic, plane, compression_edge, extension_edge, apex, tension };
+// the apex; `separated`: the grains are apart (MohrCoulombParameters::separation), no stress.
+enum class MohrCoulombRegion {
+  elastic,
+  plane,
+  compression_edge,
+  extension_edge,
+  apex,
+  tension,
+  separated
+};
 
 }  // namespace cosmpm::material
 
