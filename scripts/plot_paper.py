@@ -121,8 +121,11 @@ class Run:
             text += ", Coulomb floor"
         if float(self.case.get("dilatancy-cutoff", "0")) > 0:
             text += ", cut-off %s" % self.case["dilatancy-cutoff"]
-        if self.polar and self.case.get("blade-rotation-fixed") == "false":
-            text += ", free rotation"
+        rotation = self.case.get("blade-rotation", "held")
+        if self.case.get("blade-rotation-fixed") == "false":  # older case files
+            rotation = "free"
+        if self.polar and rotation != "held":
+            text += ", %s rotation" % rotation
         if not self.complete:
             text += " (stopped at %.0f mm)" % (self.travel_reached * 1000)
         return text
@@ -569,7 +572,8 @@ def write_report(out, runs, figures, rows, heights, bands, args):
             match = re.search(r"^error: (.*)$", log.read_text(), re.MULTILINE)
             error = match.group(1)[:160] if match else "exit %s" % status
         shown = {"depth": None, "psi": None, "floor": None, "dilatancy-cutoff": "0",
-                 "polar": "false", "blade-rotation-fixed": "true", "travel": None}
+                 "polar": "false", "blade-rotation": "held", "blade-rotation-fixed": "true",
+                 "separation": "false", "travel": None}
         arguments = " ".join("%s=%s" % (k, run.case[k]) for k, default in shown.items()
                              if k in run.case and run.case[k] != default)
         lines.append("| %s | %s, %s | %.0f mm | %s | %s s | %s s |" % (

@@ -73,7 +73,7 @@ queue_case flow_psi2 "$flow --psi 2"
 for depth in 0.35 0.25 0.15; do
   queue_case "polar_h${depth}" "--polar true --depth $depth"
 done
-queue_case polar_h0.35_free "--polar true --depth 0.35 --blade-rotation-fixed false"
+queue_case polar_h0.35_free "--polar true --depth 0.35 --blade-rotation free"
 # Fig. 6: h = 350 mm, 100 mm of travel, the three dilatancy angles, on the Coulomb floor with
 # the same cut-off as Figs. 1-3 (on the fixed floor psi = 26 stops at the tip within 35 mm).
 for psi in 26 10; do

@@ -44,7 +44,13 @@ struct Case {
   // lifts the rotational step bound above the p-wave bound (2.7 x fewer steps) and changed
   // the 15-35 mm draft by at most 0.03 % at h = 150, 250 and 350 mm (docs/theory/mpm.md).
   double micro_inertia_scale = 16.0;
-  bool blade_rotation_fixed = true;  // omega = 0 at the blade (the paper's default)
+  // The Cosserat rotation at the blade (contact::Interface::Rotation): held (omega = 0 at the
+  // nodes straddling the face, the paper's), free, or coupled (Coulomb friction on the grains'
+  // slip v_t - r omega, its moment turning them) with the grain radius r = d50 / 2: the
+  // paper's corn grains are about 10 mm (its Sect. 2.2, also its l).
+  std::string blade_rotation = "held";
+  double grain_radius = 0.005;       // m
+  bool blade_rotation_fixed = true;  // older spelling: true = held, false = free
   std::string cone = "default";      // Drucker-Prager fit to phi and psi
   // Method: the composition of the simulation (compositions.hpp lists those built in).
   std::string material = "auto";  // mohr-coulomb, or cosserat-drucker-prager when polar
@@ -104,7 +110,12 @@ struct Case {
     std::ostringstream name;
     name << "h" << std::lround(soil_depth * 1000) << "_" << cells_x << "x" << cells_y << "_"
          << (is_polar() ? "polar" : "nonpolar") << "_psi" << dilatancy_angle_deg;
-    if (is_polar()) name << (blade_rotation_fixed ? "_wfixed" : "_wfree");
+    if (is_polar()) {
+      name << (blade_rotation == "held" ? "_wfixed" : "_w" + blade_rotation);
+      if (blade_rotation == "coupled" && grain_radius != Case{}.grain_radius) {
+        name << "_r" << grain_radius;
+      }
+    }
     if (is_polar() && micro_inertia_scale != Case{}.micro_inertia_scale) {
       name << "_jscale" << micro_inertia_scale;
     }
@@ -164,8 +175,14 @@ inline void declare_options(Options& o, Case& c) {
          "rotational step bound above the p-wave bound, 2.7 x fewer steps, and changed the "
          "draft by at most 0.03 % against 1 at h = 150-350 mm; 1: the paper's dynamics "
          "(docs/theory/mpm.md, \"Cosserat continuum\")");
+  o.choice("blade-rotation", c.blade_rotation, {"held", "free", "coupled"},
+           "the Cosserat rotation at the blade: held (w = 0 at the nodes straddling its face, "
+           "the paper's), free, or coupled (wall friction on the grains' slip v_t - r w, its "
+           "moment turning them; docs/theory/mpm.md)");
+  o.real("grain-radius", c.grain_radius, {0.0, 1.0, Bounds::right_closed}, "m",
+         "grain radius r = d50 / 2 of --blade-rotation coupled (the corn: d50 = 10 mm)");
   o.flag("blade-rotation-fixed", c.blade_rotation_fixed,
-         "hold the Cosserat rotation at the blade (the paper's w = 0)");
+         "older spelling of --blade-rotation: true = held, false = free");
   o.group("Method and model (the compositions built into this program: see --help below)");
   o.choice("material", c.material,
            {"auto", "mohr-coulomb", "drucker-prager", "cosserat-drucker-prager"},
@@ -305,11 +322,26 @@ inline void validate(const Options& o, Case& c) {
   c.polar = c.is_polar();
   if (!c.polar) {
     for (const char* name : {"gc-over-g", "length-scale", "micro-inertia", "micro-inertia-scale",
-                             "blade-rotation-fixed"}) {
+                             "blade-rotation", "grain-radius", "blade-rotation-fixed"}) {
       if (o.changed(name)) {
         o.fail(name, "applies to polar soil only; add --polar true or leave it out");
       }
     }
+  }
+  if (o.given("blade-rotation-fixed")) {
+    // The older flag; where both are given, the command line overrides a case file.
+    if (o.given("blade-rotation") &&
+        o.origin("blade-rotation") == o.origin("blade-rotation-fixed")) {
+      o.fail("blade-rotation-fixed", "and " + o.describe("blade-rotation") +
+                                         " set the same condition; give --blade-rotation only");
+    }
+    if (!o.given("blade-rotation") || o.origin("blade-rotation-fixed") == Origin::command_line) {
+      c.blade_rotation = c.blade_rotation_fixed ? "held" : "free";
+    }
+  }
+  c.blade_rotation_fixed = c.blade_rotation == "held";  // case.used says the same
+  if (c.blade_rotation != "coupled" && o.changed("grain-radius")) {
+    o.fail("grain-radius", "applies to --blade-rotation coupled only; add it or leave this out");
   }
   if (c.material == "mohr-coulomb" && o.changed("cone")) {
     o.fail("cone", "applies to the Drucker-Prager models only (--material is mohr-coulomb)");

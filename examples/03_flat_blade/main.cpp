@@ -86,6 +86,11 @@ std::string written_list(const io::RunDirectory& folder) {
   if (frames > 0) list += " (" + std::to_string(frames) + " frames)";
   return list;
 }
+
+// summary.csv holds numbers only: the rotation condition at the blade as a code.
+double blade_rotation_code(const std::string& rotation) {
+  return rotation == "free" ? 0.0 : rotation == "held" ? 1.0 : 2.0;
+}
 }  // namespace
 
 int main(int argc, char** argv) {
@@ -136,6 +141,13 @@ int main(int argc, char** argv) {
     }
     if (c.separation) {
       std::printf("  separation: stress-free where the grains came apart, until compressed\n");
+    }
+    if (c.polar) {
+      std::printf("  rotation at the blade: %s", c.blade_rotation.c_str());
+      if (c.blade_rotation == "coupled") {
+        std::printf(" (wall friction on the slip v_t - r w, r = %g mm)", c.grain_radius * 1000);
+      }
+      std::printf("\n");
     }
     if (c.dilatancy_cutoff > 0.0) {
       std::printf("  dilatancy cut-off: psi = 0 from a plastic shear strain of %g\n",
@@ -212,7 +224,9 @@ int main(int argc, char** argv) {
                                                            "stray_mass_kg_per_m",
                                                            "overrun_particles",
                                                            "overrun_mass_kg_per_m",
-                                                           "micro_inertia_scale"});
+                                                           "micro_inertia_scale",
+                                                           "blade_rotation_0free_1held_2coupled",
+                                                           "grain_radius_m"});
       summary.write_row({c.soil_depth,
                          static_cast<double>(c.cells_x),
                          static_cast<double>(c.cells_y),
@@ -237,7 +251,9 @@ int main(int argc, char** argv) {
                          o.stray_mass,
                          static_cast<double>(o.overrun_particles),
                          o.overrun_mass,
-                         c.polar ? c.micro_inertia_scale : 0.0});
+                         c.polar ? c.micro_inertia_scale : 0.0,
+                         c.polar ? blade_rotation_code(c.blade_rotation) : 0.0,
+                         c.polar && c.blade_rotation == "coupled" ? c.grain_radius : 0.0});
     }
     std::printf("  %ld particles, %ld steps of %.3g s, %.1f s of computing\n", o.particles, o.steps,
                 o.time_step, o.run_seconds);

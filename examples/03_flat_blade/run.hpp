@@ -158,9 +158,10 @@ Outcome run(const Case& c, RunContext& context,
   contact::RigidContact<2> blade_contact;
   blade_contact.set_start_of_step_correction(c.start_of_step_contact);
   blade_contact.set_gap_check(c.gap_check);
-  blade_contact.add_body(std::move(blade),
-                         contact::Interface::coulomb_angle(c.wall_friction_deg)
-                             .with_rotation_held(polar && c.blade_rotation_fixed));
+  contact::Interface interface = contact::Interface::coulomb_angle(c.wall_friction_deg);
+  if (polar && c.blade_rotation == "held") interface.with_rotation_held();
+  if (polar && c.blade_rotation == "coupled") interface.with_grain_rotation_coupled(c.grain_radius);
+  blade_contact.add_body(std::move(blade), interface);
   constexpr int blade_body = 0;
   constexpr int cutting_face = 1;
 

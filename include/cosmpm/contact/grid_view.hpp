@@ -42,6 +42,9 @@ struct GridView {
   // that look at the material's own geometry (RigidContact's gap check).
   std::span<const Vec<Dim>> particle_positions = {};
   std::span<const Vec<Dim>> particle_half_widths = {};
+  // The nodal rotational inertia sum_p N_ip m_p J_p beside `spin` (Cosserat 2D), for laws that
+  // apply moments at a body (Interface::Rotation::coupled); empty for a classical continuum.
+  std::span<const double> rotational_inertia = {};
 };
 
 // The force phase, before the momentum update: a law adds its contact forces (penalty laws)

@@ -16,9 +16,14 @@ struct Interface {
   };
   Kind kind = Kind::coulomb;
   double friction_coefficient = 0.0;  // mu = tan(delta), for Kind::coulomb
-  // Cosserat runs: hold the nodal micro-spin at the body's angular velocity at nodes in
-  // contact (the paper's w^c = 0 at the blade); free otherwise.
-  bool hold_rotation = false;
+  // Cosserat runs: the condition on the nodal micro-spin at the body (contact/wall_rotation.hpp).
+  enum class Rotation {
+    free,     // nothing imposed (zero couple traction)
+    held,     // spin = the body's angular velocity at the nodes straddling its surface
+    coupled,  // Coulomb friction on the grains' contact-point slip v_t - r (omega - Omega)
+  };
+  Rotation rotation = Rotation::free;
+  double grain_radius = 0.0;  // r = d50 / 2 (m), > 0 for Rotation::coupled
 
   static Interface coulomb(double mu) {
     require_non_negative("contact::Interface::coulomb", "friction coefficient mu", mu);
@@ -39,8 +44,20 @@ struct Interface {
     return i;
   }
   Interface& with_rotation_held(bool hold = true) {
-    hold_rotation = hold;
+    rotation = hold ? Rotation::held : Rotation::free;
     return *this;
+  }
+  // The grains at the face roll and slide: Coulomb friction acts on the slip of their contact
+  // point, and its moment (friction force x r) turns them. r: the mean grain radius d50 / 2.
+  Interface& with_grain_rotation_coupled(double radius) {
+    require_positive("contact::Interface::with_grain_rotation_coupled", "grain radius r (m)",
+                     radius);
+    rotation = Rotation::coupled;
+    grain_radius = radius;
+    return *this;
+  }
+  static constexpr const char* rotation_name(Rotation r) {
+    return r == Rotation::held ? "held" : r == Rotation::coupled ? "coupled" : "free";
   }
 };
 
@@ -62,6 +79,9 @@ struct ContactNode {
   Vec<Dim> force_on_material = Vec<Dim>::Zero();
   double normal_force = 0.0;  // force_on_material . normal: >= 0 when the body pushes
   double shear_force = 0.0;   // force_on_material . tangent
+  // I (spin_corrected - spin_trial) / dt on the rotational degree of freedom (N m per m of
+  // width; I: the node's rotational inertia), from a held or coupled rotation; 0 when free.
+  double moment_on_material = 0.0;
   NodeState state = NodeState::separating;
 };
 

@@ -32,6 +32,7 @@
 #include "cosmpm/contact/grid_view.hpp"
 #include "cosmpm/contact/interface.hpp"
 #include "cosmpm/contact/rigid_body.hpp"
+#include "cosmpm/contact/wall_rotation.hpp"
 #include "cosmpm/core/error.hpp"
 #include "cosmpm/core/types.hpp"
 #include "cosmpm/grid/grid.hpp"
@@ -50,6 +51,13 @@ class RigidContact {
     if (interface.kind == Interface::Kind::coulomb) {
       require_non_negative("contact::RigidContact::add_body", "friction coefficient mu",
                            interface.friction_coefficient);
+    }
+    if (interface.rotation == Interface::Rotation::coupled) {
+      require(interface.kind == Interface::Kind::coulomb,
+              "contact::RigidContact::add_body: a coupled grain rotation needs a Coulomb "
+              "interface (its friction acts on the grains' slip), not no_slip");
+      require_positive("contact::RigidContact::add_body", "grain radius r (m)",
+                       interface.grain_radius);
     }
     bodies_.push_back({std::move(body), interface, Vec<Dim>::Zero()});
     return static_cast<int>(bodies_.size()) - 1;
@@ -256,6 +264,24 @@ class RigidContact {
     }
   }
 
+  // The coupled law turns the grains: it needs the continuum's spin and rotational inertia.
+  static void require_rotational_inertia(const GridView<Dim>& view, int b) {
+    const auto nodes = static_cast<std::size_t>(view.grid.node_count());
+    if (view.spin.size() != nodes || view.rotational_inertia.size() != nodes) {
+      throw Error("contact::RigidContact: body " + std::to_string(b) +
+                  " has a coupled grain rotation (Interface::with_grain_rotation_coupled), but "
+                  "the grid view holds " +
+                  std::to_string(view.spin.size()) + " nodal spins and " +
+                  std::to_string(view.rotational_inertia.size()) +
+                  " rotational inertias (valid: one of each per node, " + std::to_string(nodes) +
+                  ", from a Cosserat continuum)");
+    }
+  }
+  static double inertia_of(const GridView<Dim>& view, Index n) {
+    return view.rotational_inertia.empty() ? 0.0
+                                           : view.rotational_inertia[static_cast<std::size_t>(n)];
+  }
+
   void measure_gaps(const GridView<Dim>& view, const RigidBody<Dim>& body, int b) {
     detail::smallest_gaps(view, body, b, gaps_);
   }
@@ -286,6 +312,10 @@ class RigidContact {
       hi[d] = static_cast<Index>(std::clamp(std::ceil(c), 0.0, static_cast<double>(g.cells(d))));
     }
     const double mu = e.interface.friction_coefficient;
+    const bool held = e.interface.rotation == Interface::Rotation::held && !view.spin.empty();
+    const bool coupled = e.interface.rotation == Interface::Rotation::coupled;
+    if (coupled) require_rotational_inertia(view, b);
+    const Vec<Dim> half_cell = 0.5 * g.cell_size();
     for (Index j = lo[1]; j <= hi[1]; ++j) {
       for (Index i = lo[0]; i <= hi[0]; ++i) {
         const Index n = g.node_index({i, j});
@@ -300,9 +330,17 @@ class RigidContact {
         const double v_n = v_rel.dot(p.normal);
         Vec<Dim> v_new = v_trial;
         NodeState state = NodeState::separating;
+        const double spin_trial = view.spin.empty() ? 0.0 : view.spin[static_cast<std::size_t>(n)];
+        double spin_new = spin_trial;
         if (e.interface.kind == Interface::Kind::no_slip) {
           v_new = v_body;
           state = NodeState::bonded;
+        } else if (v_n < 0.0 && reaches_within_step(n, v_n, view.dt, g) && coupled) {
+          const auto c = grain_wall_friction(v_rel, spin_trial - body_omega, p.normal, m,
+                                             inertia_of(view, n), mu, e.interface.grain_radius);
+          v_new = v_body + c.velocity;
+          spin_new = body_omega + c.spin;
+          state = c.state;
         } else if (v_n < 0.0 && reaches_within_step(n, v_n, view.dt, g)) {
           const Vec<Dim> v_t = v_rel - v_n * p.normal;
           const double v_t_norm = v_t.norm();
@@ -316,9 +354,10 @@ class RigidContact {
           }
         }
         view.velocity[n] = v_new;
-        if (state != NodeState::separating && e.interface.hold_rotation && !view.spin.empty()) {
-          view.spin[static_cast<std::size_t>(n)] = body_omega;
+        if (state != NodeState::separating && held && straddles_surface(body, x, half_cell)) {
+          spin_new = body_omega;
         }
+        if (!view.spin.empty()) view.spin[static_cast<std::size_t>(n)] = spin_new;
         examined_.push_back(
             {n, record ? static_cast<Index>(records_.size()) : Index{-1}, m, p.normal, v_body});
         if (!record) continue;
@@ -334,6 +373,9 @@ class RigidContact {
         r.force_on_material = m * (v_new - v_trial) / view.dt;
         r.normal_force = r.force_on_material.dot(r.normal);
         r.shear_force = r.force_on_material.dot(r.tangent);
+        if (spin_new != spin_trial) {
+          r.moment_on_material = inertia_of(view, n) * (spin_new - spin_trial) / view.dt;
+        }
         r.state = state;
         e.force_on_material += r.force_on_material;
         records_.push_back(r);

@@ -33,6 +33,7 @@ contact::GridView<State::dim> contact_view(State& s, std::vector<Vec<State::dim>
                               contact::node_reach<typename State::kernel_type>()};
   view.particle_positions = s.particles.template get<particles::field::Position<Dim>>();
   view.particle_half_widths = s.particles.template get<particles::field::HalfWidth<Dim>>();
+  if constexpr (State::rotational_dofs > 0) view.rotational_inertia = s.nodes.rotational_inertia;
   return view;
 }
 
