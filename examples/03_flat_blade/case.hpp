@@ -27,8 +27,9 @@ struct Case {
   double dilatancy_cutoff = 0.0;     // plastic shear strain; 0: none (the paper)
   double cohesion = 0.0;             // Pa
   // Mohr-Coulomb: a point that dilated at the apex stays stress-free until compression closes
-  // the gap (MohrCoulombParameters::separation).
-  bool separation = false;
+  // the gap (MohrCoulombParameters::separation). auto: on for cohesionless Mohr-Coulomb.
+  std::string separation_choice = "auto";
+  bool separation = false;          // the choice resolved (check_case)
   double wall_friction_deg = 14.0;  // corn on steel
   // The rig floor under the soil: "fixed" (the paper's: no velocity at the floor nodes) or
   // "friction" (a Coulomb wall, no penetration, friction angle floor_friction_deg), on which
@@ -123,7 +124,7 @@ struct Case {
       name << "_" << cone;
     }
     if (dilatancy_cutoff > 0.0) name << "_cutoff" << dilatancy_cutoff;
-    if (separation != Case{}.separation) name << (separation ? "_sep" : "_nosep");
+    if (separation_choice != "auto") name << "_separation_" << separation_choice;
     if (material == "drucker-prager") name << "_dp";
     if (shape != "linear") name << "_" << shape;
     if (integrator != "musl") name << "_" << integrator;
@@ -154,10 +155,11 @@ inline void declare_options(Options& o, Case& c) {
          "0), a dilatancy cut-off at the critical state; 0: none (the paper's perfect "
          "plasticity)");
   o.real("cohesion", c.cohesion, {0.0, 1e9, Bounds::closed}, "Pa", "cohesion c");
-  o.flag("separation", c.separation,
-         "Mohr-Coulomb only, cohesion 0: a point that dilated at the apex (its grains apart) "
-         "stays stress-free until compression has closed the gap, instead of being stressed "
-         "again from its swollen volume");
+  o.choice("separation", c.separation_choice, {"auto", "true", "false"},
+           "Mohr-Coulomb, cohesion 0: a point that dilated at the apex (its grains apart) stays "
+           "stress-free until compression has closed the gap, instead of being stressed again "
+           "from its swollen volume (the heap spilling over the blade); auto: on for "
+           "cohesionless Mohr-Coulomb");
   o.real("delta", c.wall_friction_deg, {0.0, 60.0, Bounds::closed}, "deg",
          "soil-blade friction angle, at most --phi");
   o.group("Cosserat soil (with --polar true)");
@@ -330,12 +332,16 @@ inline void validate(const Options& o, Case& c) {
   }
   if (o.given("blade-rotation-fixed")) {
     // The older flag; where both are given, the command line overrides a case file.
+    // case.used writes both, consistently; a file or command line that sets both differently
+    // is ambiguous.
+    const bool consistent = c.blade_rotation_fixed == (c.blade_rotation == "held");
     if (o.given("blade-rotation") &&
-        o.origin("blade-rotation") == o.origin("blade-rotation-fixed")) {
-      o.fail("blade-rotation-fixed", "and " + o.describe("blade-rotation") +
-                                         " set the same condition; give --blade-rotation only");
+        o.origin("blade-rotation") == o.origin("blade-rotation-fixed") && !consistent) {
+      o.fail("blade-rotation-fixed",
+             "and " + o.describe("blade-rotation") + " disagree; give --blade-rotation only");
     }
-    if (!o.given("blade-rotation") || o.origin("blade-rotation-fixed") == Origin::command_line) {
+    if (!o.given("blade-rotation") ||
+        (o.origin("blade-rotation-fixed") == Origin::command_line && !consistent)) {
       c.blade_rotation = c.blade_rotation_fixed ? "held" : "free";
     }
   }
@@ -354,9 +360,11 @@ inline void validate(const Options& o, Case& c) {
   if (c.polar && c.antilocking != "none") {
     o.fail("antilocking", "applies to nonpolar soil only (--polar true); leave it at none");
   }
-  if (c.separation && (c.material != "mohr-coulomb" || c.cohesion != 0.0)) {
+  const bool separable = c.material == "mohr-coulomb" && c.cohesion == 0.0;
+  if (c.separation_choice == "true" && !separable) {
     o.fail("separation", "is implemented for --material mohr-coulomb with --cohesion 0 only");
   }
+  c.separation = c.separation_choice == "true" || (c.separation_choice == "auto" && separable);
   if (c.dilatancy_cutoff > 0.0 && c.material != "mohr-coulomb") {
     o.fail("dilatancy-cutoff", "is implemented for --material mohr-coulomb only; leave it at 0");
   }

@@ -174,6 +174,11 @@ struct Outcome {
   // the blade passed over instead of pushing (the paper's fixed floor holds the bottom cell).
   long overrun_particles = 0;
   double overrun_mass = 0.0;  // kg/m
+  // At the end, polar runs: the largest Cosserat rotation |omega_3| (rad) and couple stress
+  // |(m_31, m_32)| (N/m) over the particles.
+  double max_rotation = 0.0;
+  double max_couple_stress = 0.0;
+  long separated_particles = 0;  // at the end, points whose grains are apart (--separation)
 };
 
 // What the run needs from main: the options (for messages and the run's parameters), the

@@ -226,7 +226,10 @@ int main(int argc, char** argv) {
                                                            "overrun_mass_kg_per_m",
                                                            "micro_inertia_scale",
                                                            "blade_rotation_0free_1held_2coupled",
-                                                           "grain_radius_m"});
+                                                           "grain_radius_m",
+                                                           "max_rotation_rad",
+                                                           "max_couple_stress_N_per_m",
+                                                           "separated_particles"});
       summary.write_row({c.soil_depth,
                          static_cast<double>(c.cells_x),
                          static_cast<double>(c.cells_y),
@@ -253,10 +256,21 @@ int main(int argc, char** argv) {
                          o.overrun_mass,
                          c.polar ? c.micro_inertia_scale : 0.0,
                          c.polar ? blade_rotation_code(c.blade_rotation) : 0.0,
-                         c.polar && c.blade_rotation == "coupled" ? c.grain_radius : 0.0});
+                         c.polar && c.blade_rotation == "coupled" ? c.grain_radius : 0.0,
+                         o.max_rotation,
+                         o.max_couple_stress,
+                         static_cast<double>(o.separated_particles)});
     }
     std::printf("  %ld particles, %ld steps of %.3g s, %.1f s of computing\n", o.particles, o.steps,
                 o.time_step, o.run_seconds);
+    if (c.polar) {
+      std::printf("  at the end: largest Cosserat rotation %.3g rad, couple stress %.3g N/m\n",
+                  o.max_rotation, o.max_couple_stress);
+    }
+    if (c.separation) {
+      std::printf("  at the end: %ld particles with their grains apart (stress-free)\n",
+                  o.separated_particles);
+    }
     std::printf(
         "  average draft over %.0f-%.0f mm of travel: %.1f N/m (%.2f N for the %.0f mm rig)\n",
         c.average_from * 1000, c.average_to * 1000, o.average_draft_per_width,

@@ -2,6 +2,7 @@
 // The flat-blade run of one composition: set-up, the checks that the case can keep its
 // promises, the time loop with its outputs, checkpoints and restart. Included only by the
 // run_*.cpp files, each of which compiles it for some compositions.
+#include <algorithm>
 #include <chrono>
 #include <cmath>
 #include <cstdio>
@@ -383,6 +384,21 @@ Outcome run(const Case& c, RunContext& context,
       if (x[p][0] < final_blade.upper_bound()[0] && x[p][1] < final_blade.upper_bound()[1]) {
         ++outcome.overrun_particles;
         outcome.overrun_mass += mass[p];
+      }
+    }
+  }
+  {
+    const auto& states = sim.particles().template get<particles::field::MaterialState<Model>>();
+    for (const auto& s : states) {
+      if constexpr (requires { s.separation; }) outcome.separated_particles += s.separation > 0.0;
+    }
+    if constexpr (polar) {
+      const auto& rotation = sim.particles().template get<particles::field::MicroRotation>();
+      const auto& stress = sim.particles().template get<particles::field::Stress<Model>>();
+      for (std::size_t p = 0; p < rotation.size(); ++p) {
+        outcome.max_rotation = std::max(outcome.max_rotation, std::abs(rotation[p]));
+        outcome.max_couple_stress =
+            std::max(outcome.max_couple_stress, std::hypot(stress[p][5], stress[p][6]));
       }
     }
   }
