@@ -510,7 +510,7 @@ def main():
     figures["flow"] = plot_flow(runs, out)
     figures["surface"], heights = plot_free_surfaces(runs, out)
     figures["psi"] = plot_forces(
-        pick("h0.35_psi2_floor", "h0.35_psi10", "h0.35_psi26", "h0.35", "polar_h0.35"),
+        pick("h0.35", "h0.35_psi10", "h0.35_psi26", "polar_h0.35"),
         "Fig. 6: blade forces for three dilatancy angles, h = 350 mm", "fig06_forces_psi.png",
         out)
     figures["depth"] = plot_forces(pick("h0.15", "h0.25", "h0.35"),
@@ -620,7 +620,7 @@ def write_report(out, runs, figures, rows, heights, bands, args):
                     cells.append("%.0f" % (value[0] * 1000) if value else "-")
                 lines.append("| %s | %s |" % (psi, " | ".join(cells)))
         if key in ("psi", "depth"):
-            names = (("h0.35_psi2_floor", "h0.35_psi10", "h0.35_psi26", "h0.35", "polar_h0.35")
+            names = (("h0.35", "h0.35_psi10", "h0.35_psi26", "polar_h0.35")
                      if key == "psi" else ("h0.15", "h0.25", "h0.35"))
             windows = ((0.015, 0.035), (0.035, 0.05), (0.05, 0.1))
             lines += ["", "Average draft [N/m] over stretches of travel:", "",

@@ -211,7 +211,9 @@ TEST_CASE("a particle frame round-trips every field exactly, in ParaView's shape
   const RawDataset strain = read_raw(path, "/particles/strain");
   const RawDataset plastic = read_raw(path, "/particles/plastic");
   const RawDataset shear = read_raw(path, "/particles/plastic_shear_strain");
-  for (const auto* data : {&mass, &body, &gradient, &stress, &strain, &plastic, &shear}) {
+  const RawDataset separation = read_raw(path, "/particles/separation");
+  for (const auto* data :
+       {&mass, &body, &gradient, &stress, &strain, &plastic, &shear, &separation}) {
     REQUIRE(data->ok);
   }
   CHECK(gradient.dims == std::vector<hsize_t>{N, 9});
@@ -244,6 +246,7 @@ TEST_CASE("a particle frame round-trips every field exactly, in ParaView's shape
     const auto& state = store.get<field::MaterialState<PlasticModel>>()[p];
     CHECK(plastic.values[p] == state.plastic);
     CHECK(shear.values[p] == state.plastic_shear_strain);
+    CHECK(separation.values[p] == state.separation);
   }
   // Every dataset says its unit; tensors and vectors their components.
   CHECK(read_string_attribute(path, "/particles/stress", "units") == "Pa");
@@ -365,9 +368,9 @@ TEST_CASE("the XDMF index is well-formed and references existing datasets of its
   REQUIRE(listed_times.size() == 3);
   for (int f = 0; f < 3; ++f) CHECK(listed_times[f] == times[f]);
   // Per frame: connectivity and geometry; initial_position, velocity, displacement
-  // (vectors); mass, body, plastic, plastic_shear_strain (scalars); velocity_gradient,
-  // stress, strain (tensors); travel: 2 + 3 + 4 + 3 + 1 = 13.
-  CHECK(references == 3 * 13);
+  // (vectors); mass, body, plastic, plastic_shear_strain, separation (scalars);
+  // velocity_gradient, stress, strain (tensors); travel: 2 + 3 + 5 + 3 + 1 = 14.
+  CHECK(references == 3 * 14);
   CHECK(types.at("velocity") == "Vector");
   CHECK(types.at("displacement") == "Vector");
   CHECK(types.at("stress") == "Tensor");
@@ -379,7 +382,7 @@ TEST_CASE("the XDMF index is well-formed and references existing datasets of its
   CHECK(types.at("travel") == "Scalar");
   // The frame value is field data (one value per frame), everything else per point.
   CHECK(std::count(centres.begin(), centres.end(), "Grid") == 3);
-  CHECK(std::count(centres.begin(), centres.end(), "Node") == 3 * 10);
+  CHECK(std::count(centres.begin(), centres.end(), "Node") == 3 * 11);
   const RawDataset travel = read_raw(dir / "series_000002.h5", "/values/travel");
   REQUIRE(travel.ok);
   CHECK(travel.values == std::vector<double>{0.002});

@@ -54,6 +54,7 @@ inline Store2 random_store(Index count, unsigned seed = 12345) {
     auto& state = store.get<particles::field::MaterialState<PlasticModel>>()[p];
     state.plastic_shear_strain = 0.5 * (1.0 + uniform(random));
     state.plastic = p % 2 == 0 ? 1.0 : 0.0;
+    state.separation = p % 3 == 0 ? 1e-3 * static_cast<double>(p) : 0.0;  // no random draw
   }
   return store;
 }
