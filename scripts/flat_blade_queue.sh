@@ -53,7 +53,7 @@ queue_run() {
       echo "[$tag] the case ${queue_names[$i]} does not check: $line" >&2
       return 2
     fi
-    weights+=($((particles * steps / 1000)))
+    weights[i]=$((particles * steps / 1000))  # by case index, as the report reads it
     total=$((total + particles * steps / 1000))
   done
   echo "[$tag] ${#pending[@]} of ${#queue_names[@]} runs into $runs, $jobs at a time" >&2
