@@ -55,19 +55,7 @@ Eigen::Vector3d principal(const SymmetricTensor<3, double>& s) {
   return solver.eigenvalues().reverse();
 }
 
-// Runs `make`, expects a cosmpm::Error naming every fragment.
-void expect_error(const std::function<void()>& make, const std::vector<std::string>& fragments) {
-  try {
-    make();
-    FAIL("expected cosmpm::Error");
-  } catch (const cosmpm::Error& error) {
-    const std::string message = error.what();
-    for (const auto& fragment : fragments) {
-      INFO("message: ", message, "  missing: ", fragment);
-      CHECK(message.find(fragment) != std::string::npos);
-    }
-  }
-}
+using cosmpm::material::testing::expect_error;
 
 // A random stress of a few c, compressive on average, and a random rotation (3D).
 template <int Dim>

@@ -1,10 +1,16 @@
 #pragma once
 // Shared helpers of the material tests: finite-difference tangents, rotations, aimed increments.
+#include <doctest/doctest.h>
+
 #include <Eigen/Core>
 #include <Eigen/Geometry>
 #include <cmath>
+#include <functional>
+#include <string>
+#include <vector>
 
 #include "conformance.hpp"
+#include "cosmpm/core/error.hpp"
 #include "cosmpm/core/types.hpp"
 
 namespace cosmpm::material::testing {
@@ -31,6 +37,22 @@ Vector rotate(const Vector& a, double angle) {
 
 // Relative difference of two matrices in the max norm, scaled by the larger one.
 using conformance::detail::relative_difference;
+
+// Runs `make`, expects a cosmpm::Error, and checks that the message names every fragment
+// (the model, the parameter with its value, the valid range).
+inline void expect_error(const std::function<void()>& make,
+                         const std::vector<std::string>& fragments) {
+  try {
+    make();
+    FAIL("expected cosmpm::Error");
+  } catch (const cosmpm::Error& error) {
+    const std::string message = error.what();
+    for (const auto& fragment : fragments) {
+      INFO("message: ", message, "  missing: ", fragment);
+      CHECK(message.find(fragment) != std::string::npos);
+    }
+  }
+}
 
 }  // namespace cosmpm::material::testing
 

@@ -5,25 +5,13 @@
 #include <type_traits>
 
 #include "cosmpm/material.hpp"
+#include "test_helpers.hpp"
 
 using namespace cosmpm::material;
 
 namespace {
 
-// Runs `make`, expects a cosmpm::Error, and checks that the message names every fragment
-// (the model, the parameter with its value, the valid range).
-void expect_error(const std::function<void()>& make, std::initializer_list<std::string> fragments) {
-  try {
-    make();
-    FAIL("expected cosmpm::Error");
-  } catch (const cosmpm::Error& error) {
-    const std::string message = error.what();
-    for (const auto& fragment : fragments) {
-      INFO("message: ", message, "  missing: ", fragment);
-      CHECK(message.find(fragment) != std::string::npos);
-    }
-  }
-}
+using cosmpm::material::testing::expect_error;
 
 constexpr double kE = 2.76e6, kNu = 0.2, kG = kE / 2.4;
 
