@@ -264,24 +264,6 @@ class RigidContact {
     }
   }
 
-  // The coupled law turns the grains: it needs the continuum's spin and rotational inertia.
-  static void require_rotational_inertia(const GridView<Dim>& view, int b) {
-    const auto nodes = static_cast<std::size_t>(view.grid.node_count());
-    if (view.spin.size() != nodes || view.rotational_inertia.size() != nodes) {
-      throw Error("contact::RigidContact: body " + std::to_string(b) +
-                  " has a coupled grain rotation (Interface::with_grain_rotation_coupled), but "
-                  "the grid view holds " +
-                  std::to_string(view.spin.size()) + " nodal spins and " +
-                  std::to_string(view.rotational_inertia.size()) +
-                  " rotational inertias (valid: one of each per node, " + std::to_string(nodes) +
-                  ", from a Cosserat continuum)");
-    }
-  }
-  static double inertia_of(const GridView<Dim>& view, Index n) {
-    return view.rotational_inertia.empty() ? 0.0
-                                           : view.rotational_inertia[static_cast<std::size_t>(n)];
-  }
-
   void measure_gaps(const GridView<Dim>& view, const RigidBody<Dim>& body, int b) {
     detail::smallest_gaps(view, body, b, gaps_);
   }
@@ -328,6 +310,7 @@ class RigidContact {
         const Vec<Dim> v_body = body.velocity_at(x, body_velocity, body_omega);
         const Vec<Dim> v_rel = v_trial - v_body;
         const double v_n = v_rel.dot(p.normal);
+        const bool approaching = v_n < 0.0 && reaches_within_step(n, v_n, view.dt, g);
         Vec<Dim> v_new = v_trial;
         NodeState state = NodeState::separating;
         const double spin_trial = view.spin.empty() ? 0.0 : view.spin[static_cast<std::size_t>(n)];
@@ -335,13 +318,13 @@ class RigidContact {
         if (e.interface.kind == Interface::Kind::no_slip) {
           v_new = v_body;
           state = NodeState::bonded;
-        } else if (v_n < 0.0 && reaches_within_step(n, v_n, view.dt, g) && coupled) {
+        } else if (approaching && coupled) {
           const auto c = grain_wall_friction(v_rel, spin_trial - body_omega, p.normal, m,
                                              inertia_of(view, n), mu, e.interface.grain_radius);
           v_new = v_body + c.velocity;
           spin_new = body_omega + c.spin;
           state = c.state;
-        } else if (v_n < 0.0 && reaches_within_step(n, v_n, view.dt, g)) {
+        } else if (approaching) {
           const Vec<Dim> v_t = v_rel - v_n * p.normal;
           const double v_t_norm = v_t.norm();
           const double limit = mu * (-v_n);

@@ -15,10 +15,13 @@
 //            (P_n = m |v_n|, the normal impulse), else P_t = -mu P_n sign(s) (slip).
 #include <algorithm>
 #include <cmath>
+#include <string>
 #include <utility>
 
+#include "cosmpm/contact/grid_view.hpp"
 #include "cosmpm/contact/interface.hpp"
 #include "cosmpm/contact/rigid_body.hpp"
+#include "cosmpm/core/error.hpp"
 #include "cosmpm/core/types.hpp"
 
 namespace cosmpm::contact {
@@ -80,6 +83,26 @@ inline GrainWallCorrection grain_wall_friction(const Vec<2>& relative_velocity,
   c.velocity = (v_t + c.tangential_impulse / mass) * tangent;
   c.spin = relative_spin - radius * c.tangential_impulse / inertia;
   return c;
+}
+
+// The coupled law turns the grains: it needs the continuum's spin and rotational inertia.
+template <int Dim>
+void require_rotational_inertia(const GridView<Dim>& view, int b) {
+  const auto nodes = static_cast<std::size_t>(view.grid.node_count());
+  if (view.spin.size() != nodes || view.rotational_inertia.size() != nodes) {
+    throw Error("contact::RigidContact: body " + std::to_string(b) +
+                " has a coupled grain rotation (Interface::with_grain_rotation_coupled), but "
+                "the grid view holds " +
+                std::to_string(view.spin.size()) + " nodal spins and " +
+                std::to_string(view.rotational_inertia.size()) +
+                " rotational inertias (valid: one of each per node, " + std::to_string(nodes) +
+                ", from a Cosserat continuum)");
+  }
+}
+template <int Dim>
+double inertia_of(const GridView<Dim>& view, Index n) {
+  return view.rotational_inertia.empty() ? 0.0
+                                         : view.rotational_inertia[static_cast<std::size_t>(n)];
 }
 
 }  // namespace cosmpm::contact
