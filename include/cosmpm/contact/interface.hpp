@@ -13,6 +13,8 @@ struct Interface {
   enum class Kind {
     coulomb,  // Bardenhagen: no interpenetration, free separation, Coulomb friction
     no_slip,  // single field: the material node moves with the body (no separation either)
+    fixed,    // a grid face's fixed condition for a body at any angle: the nodes inside the
+              // body or straddling its surface move with it, the rest are free
   };
   Kind kind = Kind::coulomb;
   double friction_coefficient = 0.0;  // mu = tan(delta), for Kind::coulomb
@@ -41,6 +43,14 @@ struct Interface {
   static Interface no_slip() {
     Interface i;
     i.kind = Kind::no_slip;
+    return i;
+  }
+  // Where no_slip holds every node whose support reaches the body (up to a cell and a half
+  // from a surface turned against the grid), fixed holds only the nodes a grid face would:
+  // those whose control volume (half a cell either side) the surface crosses, and those inside.
+  static Interface fixed() {
+    Interface i;
+    i.kind = Kind::fixed;
     return i;
   }
   Interface& with_rotation_held(bool hold = true) {

@@ -318,6 +318,11 @@ class RigidContact {
         if (e.interface.kind == Interface::Kind::no_slip) {
           v_new = v_body;
           state = NodeState::bonded;
+        } else if (e.interface.kind == Interface::Kind::fixed) {
+          if (body.contains(x) || straddles_surface(body, x, half_cell)) {
+            v_new = v_body;
+            state = NodeState::bonded;
+          }
         } else if (approaching && coupled) {
           const auto c = grain_wall_friction(v_rel, spin_trial - body_omega, p.normal, m,
                                              inertia_of(view, n), mu, e.interface.grain_radius);
