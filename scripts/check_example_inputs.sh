@@ -58,6 +58,8 @@ expect 1 "GB of memory" "$e3" --mesh 100000x100000
 expect 1 "within one step of the end of --travel" "$e3" --profile-at 0.035
 expect 1 "--cells-x = '1e20' is not a whole number" "$e3" --cells-x 1e20
 expect 1 "--threads = 'nan' is not a whole number" "$e3" --threads nan
+expect 1 "--rig-angle = 60 deg is outside the valid range [-45, 45]" "$e3" --rig-angle 60
+expect 0 "rig turned 35 deg against the grid" "$e3" "${smoke[@]}" --rig-angle 35 --out turned
 expect 1 "--threads = '1.7' is not a whole number" "$e3" --threads 1.7
 expect 1 "'40.6x24.4' is not NXxNY with whole numbers" "$e3" --mesh 40.6x24.4
 expect 1 "--depth is given twice" "$e3" --depth 0.1 --depth 0.2

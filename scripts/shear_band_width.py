@@ -4,8 +4,8 @@
 usage: /usr/bin/python3 scripts/shear_band_width.py RUN_DIR [RUN_DIR ...] [--travel 0.015]
 
 The band is taken as the particles whose indicator is at least half the largest value in a
-horizontal strip: the Cosserat rotation |omega| for polar runs (the paper's Fig. 14), the
-shear-strain intensity J' since the blade started for nonpolar runs (Fig. 13). In strips at
+horizontal strip (in the rig's axes when it was turned against the grid, --rig-angle): the
+Cosserat rotation |omega| for polar runs (the paper's Fig. 14), the shear-strain intensity J' since the blade started for nonpolar runs (Fig. 13). In strips at
 1/3 and 2/3 of the depth the band's horizontal extent and centre are measured; the centres
 give the band's inclination theta to the horizontal, and the width normal to the band is the
 horizontal extent times sin(theta).
@@ -31,11 +31,22 @@ def frame_at(run, start, speed, travel):
     return frames[0], best, best_travel
 
 
+def in_rig_axes(summary, position):
+    """Positions in the rig's axes (x along the floor, y up from it) of a run whose rig was
+    turned against the grid (--rig-angle); as they are otherwise. The indicators are invariant."""
+    angle = math.radians(summary.get("rig_angle_deg", 0.0))
+    if angle == 0.0:
+        return position
+    r = position - np.array([summary["rig_origin_x_m"], summary["rig_origin_y_m"]])
+    c, s = math.cos(angle), math.sin(angle)
+    return np.column_stack((c * r[:, 0] + s * r[:, 1], -s * r[:, 0] + c * r[:, 1]))
+
+
 def measure(run, travel):
     s = summary_of(run)
     first, path, at = frame_at(run, s["cutting_start_s"], s["blade_speed_m_per_s"], travel)
     start, frame = read_frame(first), read_frame(path)
-    x = frame["position"]
+    x = in_rig_axes(s, frame["position"])
     if frame["micro_rotation"] is not None:
         indicator = np.abs(frame["micro_rotation"])
         name = "|rotation|"

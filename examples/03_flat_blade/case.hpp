@@ -36,6 +36,8 @@ struct Case {
   // the blade scrapes the floor clean.
   std::string floor = "fixed";
   double floor_friction_deg = 14.0;  // steel floor: the blade's corn-on-steel value
+  // The whole rig turned against the grid (rig.hpp; the paper turned its mesh by 35 deg).
+  double rig_angle_deg = 0.0;
   // Cosserat (Table 1): Gc = 2 G, l = 10 mm, J = 0.5 (0.5 l)^2.
   bool polar = false;
   double cosserat_shear_ratio = 2.0;    // Gc / G
@@ -131,6 +133,7 @@ struct Case {
     if (transfer != "flip-blend") name << "_" << transfer;
     if (antilocking != "none") name << "_" << antilocking;
     if (floor == "friction") name << "_floor" << floor_friction_deg;
+    if (rig_angle_deg != 0.0) name << "_rig" << rig_angle_deg;
     if (start_of_step_contact) name << "_startcontact";
     if (gap_check) name << "_gapcheck";
     return name.str();
@@ -225,6 +228,10 @@ inline void declare_options(Options& o, Case& c) {
            "friction (a Coulomb wall at --floor-friction, on which the blade scrapes it clean)");
   o.real("floor-friction", c.floor_friction_deg, {0.0, 90.0, Bounds::left_closed}, "deg",
          "friction angle of the floor with --floor friction (steel: the blade's 14)");
+  o.real("rig-angle", c.rig_angle_deg, {-45.0, 45.0, Bounds::closed}, "deg",
+         "the whole rig (floor, walls, blade, its motion and gravity) turned by this angle "
+         "against the grid, counter-clockwise; the floor and side walls are then rigid bodies "
+         "(the paper's mesh-orientation study: 35)");
   o.group("Numerics");
   o.flag("start-of-step-contact", c.start_of_step_contact,
          "contact also corrects the start-of-step velocity (Nairn, Hammerquist and Smith 2020)");

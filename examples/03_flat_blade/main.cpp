@@ -32,6 +32,7 @@
 #include "cosmpm/version.hpp"
 #include "dem_flat_blade.hpp"
 #include "feasibility.hpp"
+#include "rig.hpp"
 
 namespace {
 using namespace cosmpm;
@@ -156,6 +157,14 @@ int main(int argc, char** argv) {
     if (c.floor == "friction") {
       std::printf("  rig floor: Coulomb friction, %g deg\n", c.floor_friction_deg);
     }
+    if (c.rig_angle_deg != 0.0) {
+      const flat_blade::Rig rig(c);
+      std::printf(
+          "  rig turned %g deg against the grid (%ld x %ld cells), floor and sides as "
+          "rigid bodies; forces in rig axes\n",
+          c.rig_angle_deg, static_cast<long>(rig.grid().cells(0)),
+          static_cast<long>(rig.grid().cells(1)));
+    }
     if (c.start_of_step_contact) std::printf("  contact corrects the start-of-step velocity\n");
     if (c.gap_check) std::printf("  contact checks the gap between blade and particles\n");
     if (c.shape != "linear" || c.integrator != "musl" || c.transfer != "flip-blend" ||
@@ -229,7 +238,10 @@ int main(int argc, char** argv) {
                                                            "grain_radius_m",
                                                            "max_rotation_rad",
                                                            "max_couple_stress_N_per_m",
-                                                           "separated_particles"});
+                                                           "separated_particles",
+                                                           "rig_angle_deg",
+                                                           "rig_origin_x_m",
+                                                           "rig_origin_y_m"});
       summary.write_row({c.soil_depth,
                          static_cast<double>(c.cells_x),
                          static_cast<double>(c.cells_y),
@@ -259,7 +271,10 @@ int main(int argc, char** argv) {
                          c.polar && c.blade_rotation == "coupled" ? c.grain_radius : 0.0,
                          o.max_rotation,
                          o.max_couple_stress,
-                         static_cast<double>(o.separated_particles)});
+                         static_cast<double>(o.separated_particles),
+                         c.rig_angle_deg,
+                         flat_blade::Rig(c).origin()[0],
+                         flat_blade::Rig(c).origin()[1]});
     }
     std::printf("  %ld particles, %ld steps of %.3g s, %.1f s of computing\n", o.particles, o.steps,
                 o.time_step, o.run_seconds);

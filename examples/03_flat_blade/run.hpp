@@ -28,6 +28,7 @@
 #include "cosmpm/particles/seeding.hpp"
 #include "cosmpm/simulation.hpp"
 #include "feasibility.hpp"
+#include "rig.hpp"
 
 namespace flat_blade {
 
@@ -144,30 +145,20 @@ Outcome run(const Case& c, RunContext& context,
                   (polar ? ", --gc-over-g, --length-scale" : "") + "): " + error.what());
     }
   }();
-  const grid::Grid<2> grid(Vec<2>(0.0, 0.0), Vec<2>(c.grid_length, c.grid_height),
-                           {c.cells_x, c.cells_y});
+  const Rig rig(c);
+  const grid::Grid<2> grid = rig.grid();
 
-  // The blade: a thin rectangle standing on the rig floor, still while the layer settles,
-  // then moving at the blade speed. Its right edge (index 1) is the face that cuts.
   const double face_x = c.blade_start + c.blade_thickness;
   const double start_time = c.equilibrium_time;
   const double speed = c.blade_speed;
-  auto blade =
-      contact::RigidBody<2>::box(Vec<2>(c.blade_start, 0.0), Vec<2>(face_x, c.blade_height));
-  blade.set_velocity(contact::RigidBody<2>::VelocityLaw(
-      [start_time, speed](double t) { return Vec<2>(t < start_time ? 0.0 : speed, 0.0); }));
   contact::RigidContact<2> blade_contact;
   blade_contact.set_start_of_step_correction(c.start_of_step_contact);
   blade_contact.set_gap_check(c.gap_check);
-  contact::Interface interface = contact::Interface::coulomb_angle(c.wall_friction_deg);
-  if (polar && c.blade_rotation == "held") interface.with_rotation_held();
-  if (polar && c.blade_rotation == "coupled") interface.with_grain_rotation_coupled(c.grain_radius);
-  blade_contact.add_body(std::move(blade), interface);
-  constexpr int blade_body = 0;
+  const int blade_body = rig.add_bodies(c, polar, blade_contact);
   constexpr int cutting_face = 1;
 
   SimulationParameters<2> parameters;
-  parameters.gravity = Vec<2>(0.0, -c.gravity);
+  parameters.gravity = rig.direction(Vec<2>(0.0, -c.gravity));
   parameters.damping = c.equilibrium_damping;
   parameters.flip_fraction = c.flip_fraction;
   parameters.cfl = c.cfl;
@@ -183,7 +174,7 @@ Outcome run(const Case& c, RunContext& context,
       continuum::CosseratSettings settings{.micro_inertia = c.micro_inertia,
                                            .micro_inertia_scale = c.micro_inertia_scale};
       for (int face : {BC::face(1, false), BC::face(0, false), BC::face(0, true)}) {
-        settings.rotation_fixed[static_cast<std::size_t>(face)] = true;
+        settings.rotation_fixed[static_cast<std::size_t>(face)] = !rig.turned();
       }
       return Continuum(model, settings);
     } else {
@@ -193,33 +184,45 @@ Outcome run(const Case& c, RunContext& context,
   Sim sim(grid, continuum, parameters, std::move(blade_contact));
 
   // The soil layer in front of the blade, at rest under K0 = 1 - sin(phi) (Jaky).
-  const auto soil =
-      particles::seed_box(grid, Vec<2>(face_x, 0.0), Vec<2>(c.grid_length, c.soil_depth),
-                          static_cast<int>(c.particles_per_cell));
+  const int per_cell = static_cast<int>(c.particles_per_cell);
+  const auto soil = rig.turned()
+                        ? particles::seed_polygon(grid, rig.layer(c, face_x), per_cell)
+                        : particles::seed_box(grid, Vec<2>(face_x, 0.0),
+                                              Vec<2>(c.grid_length, c.soil_depth), per_cell);
   sim.add_particles(soil.positions, soil.volume, c.density, soil.half_width);
   const double k0 = initial::jaky_k0(c.friction_angle_deg);
   {
     const auto& x = sim.particles().template get<particles::field::Position<2>>();
     auto& stress = sim.particles().template get<particles::field::Stress<Model>>();
     for (Index p = 0; p < sim.particles().size(); ++p) {
-      const double depth = c.soil_depth - x[p][1];
+      const double depth = c.soil_depth - rig.to_rig(x[p])[1];
       if constexpr (polar) {
         stress[p] = initial::geostatic_cosserat_stress(c.density, c.gravity, depth, k0);
       } else {
         stress[p] = initial::geostatic_stress(c.density, c.gravity, depth, k0);
       }
+      if (rig.turned()) {  // K0 along the rig's axes: the principal axes turn with it
+        const double rig_xx = stress[p][0];
+        const double rig_yy = stress[p][1];
+        rig.turn_stress(rig_xx, rig_yy, stress[p][0], stress[p][1], stress[p][3]);
+        if constexpr (polar) stress[p][4] = stress[p][3];
+      }
     }
   }
   using BC = grid::BoundaryConditions<2>;
   auto& bc = sim.boundary_conditions();
-  if (c.floor == "friction") {
+  if (rig.turned()) {
+    // The walls are bodies; the grid's faces lie outside them and hold nothing.
+  } else if (c.floor == "friction") {
     bc.set(BC::face(1, false), grid::BoundaryKind::friction,
            std::tan(c.floor_friction_deg * std::numbers::pi / 180.0));
   } else {
     bc.set(BC::face(1, false), grid::BoundaryKind::fixed);  // rig floor, the paper's
   }
-  bc.set(BC::face(0, false), grid::BoundaryKind::roller);
-  bc.set(BC::face(0, true), grid::BoundaryKind::roller);
+  if (!rig.turned()) {
+    bc.set(BC::face(0, false), grid::BoundaryKind::roller);
+    bc.set(BC::face(0, true), grid::BoundaryKind::roller);
+  }
 
   // The reference: Sokolovski's passive pressure on a vertical wall of height h.
   const auto reference = analysis::sokolovski_passive({.friction_angle_deg = c.friction_angle_deg,
@@ -279,7 +282,11 @@ Outcome run(const Case& c, RunContext& context,
   std::optional<io::ParticleFrameWriter> frames;
   if (c.write_frames) {
     frames.emplace(out / "frames", "flat_blade",
-                   io::FrameOptions{.run_parameters = context.parameters, .body_names = {"blade"}});
+                   io::FrameOptions{
+                       .run_parameters = context.parameters,
+                       .body_names = rig.turned() ? std::vector<std::string>{"floor", "left_wall",
+                                                                             "right_wall", "blade"}
+                                                  : std::vector<std::string>{"blade"}});
     folder.claim("frames/flat_blade.xdmf");
     folder.claim("frames/flat_blade_bodies.xdmf");
     if (c.restart) frames->resume(sim);
@@ -310,7 +317,7 @@ Outcome run(const Case& c, RunContext& context,
     progress.update(sim.time(), sim.step_count());
     const double travel = state.cutting ? (sim.time() - start_time) * speed : 0.0;
     if (state.cutting) {
-      const Vec<2> force = sim.contact().force_on_material(blade_body);
+      const Vec<2> force = rig.in_rig_axes(sim.contact().force_on_material(blade_body));
       state.row_draft += force[0];
       state.row_vertical += force[1];
       state.row_steps += 1.0;
@@ -377,11 +384,13 @@ Outcome run(const Case& c, RunContext& context,
   outcome.stray_particles = static_cast<long>(sim.stray_particles().count);
   outcome.stray_mass = sim.stray_particles().mass;
   {
-    const auto& final_blade = sim.contact().body(blade_body);
+    // Behind or under the blade, in rig axes: x below the blade's face, y below its top.
+    const double final_face = face_x + reached;
     const auto& x = sim.particles().template get<particles::field::Position<2>>();
     const auto& mass = sim.particles().template get<particles::field::Mass>();
     for (std::size_t p = 0; p < x.size(); ++p) {
-      if (x[p][0] < final_blade.upper_bound()[0] && x[p][1] < final_blade.upper_bound()[1]) {
+      const Vec<2> at = rig.to_rig(x[p]);
+      if (at[0] < final_face && at[1] < c.blade_height) {
         ++outcome.overrun_particles;
         outcome.overrun_mass += mass[p];
       }
