@@ -147,6 +147,22 @@ def nearest_frame(frames, start, speed, travel):
     return best, best_travel
 
 
+def in_rig_axes(summary, position):
+    """Positions in the rig's axes (x along the floor, y up from it) for a run whose rig was
+    turned against the grid (--rig-angle); unchanged otherwise. `summary`: summary.csv's
+    values (numbers or one-element arrays)."""
+    def value(name):
+        v = summary.get(name, 0.0)
+        return float(np.ravel(v)[0])
+
+    angle = np.radians(value("rig_angle_deg"))
+    if angle == 0.0:
+        return position
+    r = position - np.array([value("rig_origin_x_m"), value("rig_origin_y_m")])
+    c, s = np.cos(angle), np.sin(angle)
+    return np.column_stack((c * r[:, 0] + s * r[:, 1], -s * r[:, 0] + c * r[:, 1]))
+
+
 def plot_fields(run, output):
     frames = sorted((run / "frames").glob("flat_blade_*.h5"))
     if len(frames) < 2:
@@ -155,10 +171,10 @@ def plot_fields(run, output):
     start, speed = summary["cutting_start_s"][0], summary["blade_speed_m_per_s"][0]
     target = 0.015
     first = read_frame(frames[0])
-    position0 = first["position"]
+    position0 = in_rig_axes(summary, first["position"])
     best, best_travel = nearest_frame(frames, start, speed, target)
     frame = read_frame(best)
-    x = frame["position"]
+    x = in_rig_axes(summary, frame["position"])
     plastic, rotation = frame["plastic"], frame["micro_rotation"]
     # Strain since the blade started (the first frame is at its start).
     exx = frame["strain_xx"] - first["strain_xx"]

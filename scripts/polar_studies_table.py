@@ -15,8 +15,8 @@ import sys
 
 import numpy as np
 
-from plot_flat_blade import read_frame  # same folder
-from shear_band_width import frame_at, in_rig_axes, measure, summary_of
+from plot_flat_blade import in_rig_axes, read_frame  # same folder
+from shear_band_width import frame_at, measure, summary_of
 
 DEPTHS = ("0.15", "0.25", "0.35")
 # (name, what it is, the run it is compared with)

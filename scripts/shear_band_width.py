@@ -17,7 +17,7 @@ import pathlib
 
 import numpy as np
 
-from plot_flat_blade import nearest_frame, read_frame  # same folder
+from plot_flat_blade import in_rig_axes, nearest_frame, read_frame  # same folder
 
 
 def summary_of(run):
@@ -29,17 +29,6 @@ def frame_at(run, start, speed, travel):
     frames = sorted((run / "frames").glob("flat_blade_*.h5"))
     best, best_travel = nearest_frame(frames, start, speed, travel)
     return frames[0], best, best_travel
-
-
-def in_rig_axes(summary, position):
-    """Positions in the rig's axes (x along the floor, y up from it) of a run whose rig was
-    turned against the grid (--rig-angle); as they are otherwise. The indicators are invariant."""
-    angle = math.radians(summary.get("rig_angle_deg", 0.0))
-    if angle == 0.0:
-        return position
-    r = position - np.array([summary["rig_origin_x_m"], summary["rig_origin_y_m"]])
-    c, s = math.cos(angle), math.sin(angle)
-    return np.column_stack((c * r[:, 0] + s * r[:, 1], -s * r[:, 0] + c * r[:, 1]))
 
 
 def measure(run, travel):
