@@ -56,7 +56,6 @@ class Rig {
   }
 
   bool turned() const { return angle_ != 0.0; }
-  double angle_deg() const { return angle_ * 180.0 / std::numbers::pi; }
   const Vec2& origin() const { return origin_; }
   cosmpm::grid::Grid<2> grid() const { return {Vec2(0.0, 0.0), extent_, cells_}; }
 
@@ -65,12 +64,11 @@ class Rig {
     return Vec2(cos_ * rig[0] - sin_ * rig[1], sin_ * rig[0] + cos_ * rig[1]);
   }
   Vec2 to_world(const Vec2& rig) const { return origin_ + direction(rig); }
-  Vec2 to_rig(const Vec2& world) const {
-    const Vec2 r = world - origin_;
-    return Vec2(cos_ * r[0] + sin_ * r[1], -sin_ * r[0] + cos_ * r[1]);
+  Vec2 to_rig(const Vec2& world) const { return in_rig_axes(world - origin_); }
+  // A vector's components in rig axes (a force: draft along the floor, vertical normal to it).
+  Vec2 in_rig_axes(const Vec2& world) const {
+    return Vec2(cos_ * world[0] + sin_ * world[1], -sin_ * world[0] + cos_ * world[1]);
   }
-  // The components of a force in rig axes (draft along the floor, vertical normal to it).
-  Vec2 in_rig_axes(const Vec2& world) const { return to_rig(origin_ + world); }
   // A stress with principal axes along the rig's (s_xx, s_yy in rig axes, no shear), in world
   // axes: R diag(s_xx, s_yy) R^T.
   void turn_stress(double s_xx, double s_yy, double& xx, double& yy, double& xy) const {
