@@ -5,6 +5,7 @@
 #
 #   source scripts/flat_blade_queue.sh
 #   queue_case NAME "ARGUMENTS"        # driver options; --mesh QUEUE_MESH is added unless given
+#                                      # (or the case is a DEM one, --method dem)
 #   queue_run DRIVER RUNS_DIR JOBS TAG # RUNS_DIR/NAME (output), NAME.log, NAME.status
 #
 # With queue_resume=true a case whose NAME.status says it completed is not run again (a set
@@ -24,8 +25,9 @@ queue_case() {
   queue_arguments+=("$*")
 }
 
+# A DEM case (--method dem) has no mesh.
 queue_mesh_option() {
-  case "$1" in *--mesh*) ;; *) [ -n "$queue_mesh" ] && echo "--mesh $queue_mesh" ;; esac
+  case "$1" in *--mesh* | *"--method dem"*) ;; *) [ -n "$queue_mesh" ] && echo "--mesh $queue_mesh" ;; esac
   return 0
 }
 

@@ -4,12 +4,13 @@
 usage: /usr/bin/python3 scripts/plot_paper.py OUT [--wall-seconds S] [--meshes FINE COARSE]
                                                [--quick]
 
-Reads OUT/runs/NAME (the flat-blade driver's output folders) and writes into OUT one PNG per
-figure of the paper (fig01_02_flow.png, fig03_free_surface.png, fig06_forces_psi.png,
-fig07_forces_depth.png, fig08_draft_depth.png, fig09_blade_stress.png, fig11_pdr.png,
-fig12_13_yield_shear.png), drafts.csv (Fig. 8's numbers) and report.md: each figure beside
-the statement the paper makes about it, with our numbers and the runs' times. A run that
-stopped early is drawn as far as it went and named in the report.
+Reads OUT/runs/NAME (the flat-blade driver's output folders, MPM and DEM) and writes into OUT
+one PNG per figure of the paper (fig01_02_flow.png, fig03_free_surface.png,
+fig06_forces_psi.png, fig07_forces_depth.png, fig08_draft_depth.png, fig09_blade_stress.png,
+fig10_dem_blade_stress.png, fig11_pdr.png, fig12_13_yield_shear.png), drafts.csv (Fig. 8's
+numbers) and report.md: each figure beside the statement the paper makes about it, with our
+numbers and the runs' times. A run that stopped early is drawn as far as it went and named in
+the report.
 """
 import argparse
 import csv
@@ -22,6 +23,7 @@ import matplotlib
 matplotlib.use("Agg")
 import matplotlib.pyplot as plt  # noqa: E402
 import numpy as np  # noqa: E402
+from matplotlib.collections import EllipseCollection  # noqa: E402
 
 sys.path.insert(0, str(pathlib.Path(__file__).resolve().parent))
 from plot_flat_blade import read_csv, read_frame  # noqa: E402
@@ -131,6 +133,69 @@ class Run:
         return text
 
 
+class DemRun:
+    """One output folder of example_03_flat_blade --method dem (runs dem_flow, dem_hH)."""
+
+    def __init__(self, folder):
+        self.folder = folder
+        self.name = folder.name
+        self.summary = (read_csv(folder / "summary.csv") if (folder / "summary.csv").exists()
+                        else None)
+        self.forces = read_csv(folder / "forces.csv") if (folder / "forces.csv").exists() else None
+        self.packing = (read_csv(folder / "packing.csv") if (folder / "packing.csv").exists()
+                        else None)
+
+    @property
+    def depth(self):
+        return 0.2 if self.name == "dem_flow" else float(self.name[len("dem_h"):])
+
+    @property
+    def complete(self):
+        return self.summary is not None
+
+    @property
+    def travel_reached(self):
+        if self.forces is None or len(self.forces["displacement_m"]) == 0:
+            return 0.0
+        return float(self.forces["displacement_m"][-1])
+
+    def value(self, key):
+        return None if self.summary is None else float(self.summary[key][0])
+
+    def average_draft(self):
+        return self.value("average_draft_N_per_m")
+
+    def blade_face(self):
+        """x of the blade's face before cutting (the driver's default if the run stopped)."""
+        face = self.value("blade_face_x_m")
+        return 0.06 if face is None else face
+
+    def snapshot(self, travel):
+        """The particles_<mm>mm.csv snapshot at `travel` [m], or None."""
+        path = self.folder / ("particles_%dmm.csv" % round(travel * 1000))
+        return read_csv(path) if path.exists() else None
+
+    def label(self):
+        text = "DEM, h = %.0f mm" % (self.depth * 1000)
+        if not self.complete:
+            text += " (stopped at %.0f mm)" % (self.travel_reached * 1000)
+        return text
+
+
+def draw_disks(ax, part, colours):
+    diameter = 2 * part["radius_m"]
+    ax.add_collection(EllipseCollection(diameter, diameter, np.zeros_like(diameter), units="xy",
+                                        offsets=np.column_stack([part["x_m"], part["y_m"]]),
+                                        offset_transform=ax.transData, facecolors=colours,
+                                        edgecolors="none"))
+
+
+def dem_blade_outline(run, travel, height=0.35, thickness=0.01):
+    face = run.blade_face() + travel
+    return np.array([[face - thickness, 0], [face, 0], [face, height], [face - thickness, height],
+                     [face - thickness, 0]])
+
+
 def scatter_particles(ax, run, x, **style):
     """Particles as squares of their initial spacing (cell / particles per cell), sized for
     the axes' current limits, so a particle field reads as a continuum at any mesh."""
@@ -175,7 +240,7 @@ def free_surface(position, cell):
 
 def plot_flow(runs, out):
     travels = (0.1, 0.2, 0.3, 0.4)
-    flows = [runs[n] for n in ("flow_psi2", "flow_psi10", "flow_psi26") if n in runs]
+    flows = [runs[n] for n in ("flow_psi2", "flow_psi10", "flow_psi26", "dem_flow") if n in runs]
     if not flows:
         return None
     fig, axes = plt.subplots(len(travels), len(flows), figsize=(4.2 * len(flows), 7.5),
@@ -187,6 +252,21 @@ def plot_flow(runs, out):
             ax.set_xlim(0.0, 1.0)
             ax.set_ylim(0.0, 0.45)
             ax.set_aspect("equal")
+            if isinstance(run, DemRun):
+                part = run.snapshot(travel)
+                if part is None:
+                    ax.text(0.5, 0.5, "not reached", transform=ax.transAxes, ha="center")
+                else:
+                    # The driver numbers layers of --layer-thickness (25 mm here) from the floor.
+                    draw_disks(ax, part, colours[part["layer"].astype(int) % 2])
+                    outline = dem_blade_outline(run, travel)
+                    ax.fill(outline[:, 0], outline[:, 1], color="0.3")
+                    ax.text(0.02, 0.9, "%.0f mm" % (travel * 1000), transform=ax.transAxes,
+                            fontsize=8)
+                if row == 0:
+                    ax.set_title("DEM%s" % ("" if run.complete else " (stopped at %.0f mm)"
+                                            % (run.travel_reached * 1000)), fontsize=9)
+                continue
             path, reached = run.frame_at(travel)
             if path is None:
                 ax.text(0.5, 0.5, "not reached", transform=ax.transAxes, ha="center")
@@ -203,8 +283,10 @@ def plot_flow(runs, out):
                 ax.set_title("psi = %s deg%s" % (run.case["psi"], "" if run.complete else
                                                  " (stopped at %.0f mm)" %
                                                  (run.travel_reached * 1000)), fontsize=9)
-    fig.suptitle("Figs. 1-2: nonpolar MPM, h = 200 mm, layers of %.0f mm, mesh %s"
-                 % (LAYER_THICKNESS * 1000, flows[0].mesh))
+    mpm = [run for run in flows if not isinstance(run, DemRun)]
+    fig.suptitle("Figs. 1-2: nonpolar MPM%s, h = 200 mm, layers of %.0f mm%s"
+                 % (" and DEM" if len(mpm) < len(flows) else "", LAYER_THICKNESS * 1000,
+                    ", mesh %s" % mpm[0].mesh if mpm else ""))
     fig.tight_layout()
     name = "fig01_02_flow.png"
     fig.savefig(out / name, dpi=DPI)
@@ -284,12 +366,16 @@ def draft_table(runs):
         nonpolar = runs.get("h%g" % depth)
         floor = runs.get("h%g_floor" % depth) or runs.get("h%g_psi2_floor" % depth)
         polar = runs.get("polar_h%g" % depth)
+        dem = runs.get("dem_h%g" % depth)
         sokolovski = next((r.sokolovski_draft() for r in (nonpolar, floor, polar)
                            if r is not None and r.sokolovski_draft() is not None), None)
+        if sokolovski is None and dem is not None:
+            sokolovski = dem.value("sokolovski_draft_N_per_m")
         row = {"depth_m": depth, "sokolovski": sokolovski,
                "nonpolar_fixed_floor": nonpolar.average_draft() if nonpolar else None,
                "nonpolar_coulomb_floor": floor.average_draft() if floor else None,
-               "polar": polar.average_draft() if polar else None}
+               "polar": polar.average_draft() if polar else None,
+               "dem": dem.average_draft() if dem else None}
         if sokolovski is not None:
             paper_mpm = sokolovski * PAPER_MPM_OVER_SOKOLOVSKI[k]
             row["paper_nonpolar"] = paper_mpm
@@ -322,6 +408,8 @@ def plot_drafts(rows, out):
     ax.plot(depth, series("nonpolar_coulomb_floor"), "o--", color="C2",
             label="ours: nonpolar, Coulomb floor")
     ax.plot(depth, series("polar"), "o-", color="C1", label="ours: polar, fixed floor")
+    if np.isfinite(series("dem")).any():
+        ax.plot(depth, series("dem"), "D-", color="C4", label="ours: DEM, calibrated grains")
     ax.set_xlabel("blade depth h [mm]")
     ax.set_ylabel("average draft, 15-35 mm [N/m]")
     ax.set_yscale("log")
@@ -367,6 +455,54 @@ def plot_blade_stress(selection, out):
     return name
 
 
+def plot_dem_blade_stress(dem, mpm, out):
+    """Fig. 10: the DEM's blade stresses (the paper's estimate: two neighbouring contacts'
+    mean force over their distance, 18-22 mm of travel), Sokolovski's and our nonpolar MPM's."""
+    if dem is None or not (dem.folder / "blade_stress.csv").exists():
+        return None, None
+    profile = read_csv(dem.folder / "blade_stress.csv")
+    wall = read_csv(dem.folder / "sokolovski_wall.csv")
+    keep = profile["samples"] > 0
+    fig, axes = plt.subplots(1, 2, figsize=(9, 5), sharey=True)
+    depth = profile["depth_m"][keep] * 1000
+    for ax, key in zip(axes, ("normal", "shear")):
+        ax.plot(profile["neighbour_%s_Pa" % key][keep] / 1000, depth, "o-", ms=3, color="C3",
+                label="DEM: neighbouring contacts (the paper's estimate)")
+        ax.plot(profile["binned_%s_Pa" % key][keep] / 1000, depth, "s:", ms=3, color="C3",
+                alpha=0.6, label="DEM: contact forces per 10 mm bin")
+    axes[0].plot(wall["normal_pressure_Pa"] / 1000, wall["depth_m"] * 1000, "k--",
+                 label="Sokolovski")
+    axes[1].plot(wall["shear_stress_Pa"] / 1000, wall["depth_m"] * 1000, "k--")
+    numbers = {"dem": (float(np.mean(profile["neighbour_normal_Pa"][keep])) / 1000,
+                       float(np.mean(profile["neighbour_shear_Pa"][keep])) / 1000)}
+    inside = (wall["depth_m"] >= 0) & (wall["depth_m"] <= dem.depth)
+    numbers["sokolovski"] = (float(np.mean(wall["normal_pressure_Pa"][inside])) / 1000,
+                             float(np.mean(wall["shear_stress_Pa"][inside])) / 1000)
+    if mpm is not None and (mpm.folder / "blade_stress.csv").exists():
+        m = read_csv(mpm.folder / "blade_stress.csv")
+        on = (m["depth_m"] >= -1e-9) & (m["nodes"] > 0)
+        axes[0].plot(m["normal_traction_Pa"][on] / 1000, m["depth_m"][on] * 1000, "o-", ms=3,
+                     color="C0", label="ours: nonpolar MPM (%s)" % mpm.mesh)
+        axes[1].plot(m["shear_traction_Pa"][on] / 1000, m["depth_m"][on] * 1000, "o-", ms=3,
+                     color="C0")
+        numbers["mpm"] = (float(np.mean(m["normal_traction_Pa"][on])) / 1000,
+                          float(np.mean(m["shear_traction_Pa"][on])) / 1000)
+    axes[0].set_xlabel("normal stress on the blade [kPa]")
+    axes[1].set_xlabel("shear stress on the blade [kPa]")
+    axes[0].set_ylabel("depth below the initial surface [mm]")
+    axes[0].invert_yaxis()
+    for ax in axes:
+        ax.grid(True, alpha=0.3)
+    axes[0].legend(fontsize=7)
+    fig.suptitle("Fig. 10: blade stresses, DEM, h = %.0f mm, 18-22 mm of travel"
+                 % (dem.depth * 1000))
+    fig.tight_layout()
+    name = "fig10_dem_blade_stress.png"
+    fig.savefig(out / name, dpi=DPI)
+    plt.close(fig)
+    return name, numbers
+
+
 def fields_at(run, travel):
     """Position, plastic flag, J' and PDR at the frame nearest `travel`, strains counted from
     the frame at the blade's start (the paper's Figs. 11-13)."""
@@ -398,13 +534,35 @@ def decorate(ax, run, fields):
     ax.set_ylim(0, run.depth * 1.3)
 
 
-def plot_pdr(selection, out):
+def dem_pdr_panel(ax, run, at=0.015, threshold=0.15):
+    part = run.snapshot(at)
+    slip = read_csv(run.folder / "sokolovski_slip_line.csv")
+    face = run.blade_face() + at
+    dark = part["pdr"] >= threshold
+    draw_disks(ax, part, np.where(dark, "0.15", "0.8"))
+    ax.plot(face + slip["distance_m"], run.depth - slip["depth_m"], "c-", lw=1.2, zorder=3,
+            label="Sokolovski slip line")
+    outline = dem_blade_outline(run, at)
+    ax.fill(outline[:, 0], outline[:, 1], color="0.5", zorder=3)
+    ax.set_aspect("equal")
+    ax.set_xlim(face - 0.03, face + 2.6 * run.depth)
+    ax.set_ylim(0, run.depth * 1.3)
+    ax.set_title("%s: PDR >= %.2f dark (%d of %d disks), %.0f mm of travel"
+                 % (run.label(), threshold, int(dark.sum()), len(dark), at * 1000), fontsize=9)
+
+
+def plot_pdr(selection, out, dem=None):
     panels = [(run, fields_at(run, 0.015)) for run in selection]
     panels = [(run, f) for run, f in panels if f is not None]
+    if dem is not None and dem.snapshot(0.015) is not None:
+        panels.insert(0, (dem, None))  # the paper's top panel
     if not panels:
         return None
     fig, axes = plt.subplots(len(panels), 1, figsize=(8, 2.8 * len(panels)), squeeze=False)
     for ax, (run, fields) in zip(axes[:, 0], panels):
+        if isinstance(run, DemRun):
+            dem_pdr_panel(ax, run)
+            continue
         dark = fields["pdr"] >= 0.15
         decorate(ax, run, fields)
         scatter_particles(ax, run, fields["x"], c=np.where(dark, 0.15, 0.8), cmap="Greys_r",
@@ -500,6 +658,8 @@ def main():
     for folder in sorted((out / "runs").iterdir()):
         if folder.is_dir() and (folder / "case.used").exists():
             runs[folder.name] = Run(folder)
+        elif folder.is_dir() and folder.name.startswith("dem_"):
+            runs[folder.name] = DemRun(folder)
     if not runs:
         raise SystemExit("plot_paper.py: no runs in %s/runs" % out)
 
@@ -520,18 +680,20 @@ def main():
     figures["drafts"] = plot_drafts(rows, out)
     with open(out / "drafts.csv", "w", newline="") as handle:
         keys = ["depth_m", "sokolovski", "nonpolar_fixed_floor", "nonpolar_coulomb_floor",
-                "polar", "paper_nonpolar", "paper_polar", "experiment"]
+                "polar", "dem", "paper_nonpolar", "paper_polar", "experiment"]
         writer = csv.writer(handle)
         writer.writerow(keys)
         for r in rows:
             writer.writerow(["" if r.get(k) is None else "%.6g" % r[k] for k in keys])
     figures["stress"] = plot_blade_stress(pick("h0.35", "polar_h0.35", "polar_h0.35_free"), out)
-    figures["pdr"] = plot_pdr(pick("h0.25", "polar_h0.25"), out)
+    figures["dem_stress"], dem_stress = plot_dem_blade_stress(runs.get("dem_h0.35"),
+                                                             runs.get("h0.35"), out)
+    figures["pdr"] = plot_pdr(pick("h0.25", "polar_h0.25"), out, runs.get("dem_h0.25"))
     figures["yield"], bands = plot_yield_and_shear(pick("h0.25", "h0.25_coarse"), out)
     for name in figures.values():
         if name:
             print("wrote", out / name)
-    write_report(out, runs, figures, rows, heights, bands, args)
+    write_report(out, runs, figures, rows, heights, bands, dem_stress, args)
 
 
 def processor_seconds(path):
@@ -547,21 +709,22 @@ def processor_seconds(path):
     return total
 
 
-def write_report(out, runs, figures, rows, heights, bands, args):
+def write_report(out, runs, figures, rows, heights, bands, dem_stress, args):
     lines = ["# The paper's figures, reproduced", ""]
     lines.append("Made by `scripts/reproduce_paper.sh%s` (meshes %s and %s)."
                  % (" --quick" if args.quick else "", args.meshes[0], args.meshes[1]))
     if args.wall_seconds:
         lines.append("All runs took %.1f min of wall time." % (args.wall_seconds / 60))
     cpu = {name: processor_seconds(out / "runs" / (name + ".times")) for name in runs}
-    total_cpu = sum(v for v in cpu.values() if v is not None)
-    if total_cpu > 0:
-        lines.append("Their processor time: %.1f min in all, so about %.1f min of wall time for "
-                     "two runs at a time on an idle two-core machine." % (total_cpu / 60,
-                                                                         total_cpu / 120))
-    lines += ["", "| run | arguments | reached | status | wall | processor |",
-              "| --- | --- | ---: | --- | ---: | ---: |"]
-    for name, run in runs.items():
+    for part, names in (("MPM", [n for n in runs if not isinstance(runs[n], DemRun)]),
+                        ("DEM", [n for n in runs if isinstance(runs[n], DemRun)])):
+        total_cpu = sum(cpu[n] for n in names if cpu[n] is not None)
+        if total_cpu > 0:
+            lines.append("The %s runs' processor time: %.1f min in all, so about %.1f min of "
+                         "wall time for two runs at a time on an idle two-core machine."
+                         % (part, total_cpu / 60, total_cpu / 120))
+
+    def status_of(name):
         status_file = out / "runs" / (name + ".status")
         status, seconds = ("?", "?")
         if status_file.exists():
@@ -571,18 +734,41 @@ def write_report(out, runs, figures, rows, heights, bands, args):
         if status not in ("0", "?") and log.exists():
             match = re.search(r"^error: (.*)$", log.read_text(), re.MULTILINE)
             error = match.group(1)[:160] if match else "exit %s" % status
+        return ("complete" if status == "0" else "stopped: " + error.replace("|", "/"),
+                seconds)
+
+    lines += ["", "| run | arguments | reached | status | wall | processor |",
+              "| --- | --- | ---: | --- | ---: | ---: |"]
+    for name, run in runs.items():
+        if isinstance(run, DemRun):
+            continue
+        status, seconds = status_of(name)
         shown = {"depth": None, "psi": None, "floor": None, "dilatancy-cutoff": "0",
                  "polar": "false", "blade-rotation": "held", "blade-rotation-fixed": "true",
                  "separation": "false", "travel": None}
         arguments = " ".join("%s=%s" % (k, run.case[k]) for k, default in shown.items()
                              if k in run.case and run.case[k] != default)
         lines.append("| %s | %s, %s | %.0f mm | %s | %s s | %s s |" % (
-            name, run.mesh, arguments, run.travel_reached * 1000,
-            "complete" if status == "0" else "stopped: " + error.replace("|", "/"), seconds,
+            name, run.mesh, arguments, run.travel_reached * 1000, status, seconds,
             fmt(cpu[name], "%.0f")))
+    dems = [name for name, run in runs.items() if isinstance(run, DemRun)]
+    if dems:
+        lines += ["", "| DEM run | h [mm] | grains | porosity | cutting steps | reached | status | "
+                  "wall | processor |", "| --- | ---: | ---: | ---: | ---: | ---: | --- | ---: | "
+                  "---: |"]
+        for name in dems:
+            run = runs[name]
+            status, seconds = status_of(name)
+            grains = run.packing["bodies"][0] if run.packing is not None else None
+            porosity = run.packing["porosity"][0] if run.packing is not None else None
+            lines.append("| %s | %.0f | %s | %s | %s | %.0f mm | %s | %s s | %s s |" % (
+                name, run.depth * 1000, fmt(grains, "%.0f"), fmt(porosity, "%.3f"),
+                fmt(run.value("cutting_steps"), "%.0f"), run.travel_reached * 1000, status,
+                seconds, fmt(cpu[name], "%.0f")))
     statements = [
         ("flow", "Figs. 1-2", "the flow of corn in front of the blade at 100-400 mm of travel "
-         "(h = 200 mm); nonpolar MPM with psi = 2 deg resembles the observed flow most closely."),
+         "(h = 200 mm) by experiment, DEM and nonpolar MPM; nonpolar MPM with psi = 2 deg "
+         "resembles the observed flow most closely."),
         ("surface", "Fig. 3", "with an increase in dilatancy angle there is an increase in "
          "material volumetric expansion: the free surface rises with psi."),
         ("psi", "Fig. 6", "over the first part of the displacement the responses are the same "
@@ -591,13 +777,18 @@ def write_report(out, runs, figures, rows, heights, bands, args):
         ("depth", "Fig. 7", "the forces increase with blade depth."),
         ("drafts", "Fig. 8", "nonpolar MPM overestimates Sokolovski by 12, 6 and 5 % at "
          "h = 150, 250 and 350 mm and underestimates the experiment by 25, 11 and 9 %; polar "
-         "MPM is 28, 14 and 10 % below nonpolar."),
+         "MPM is 28, 14 and 10 % below nonpolar; DEM is 6 % below to 12 % above the "
+         "experiment."),
         ("stress", "Fig. 9", "nonpolar MPM blade stresses agree with Sokolovski; polar MPM "
          "predicts lower normal and shear stresses; free rotation at the blade leaves the "
          "normal stress and about halves the shear stress."),
-        ("pdr", "Fig. 11", "PDR >= 0.15 at 15 mm: the nonpolar slip line follows the observed "
-         "and Sokolovski lines near the tip; polar MPM gives a straighter line at almost "
-         "45 deg."),
+        ("dem_stress", "Fig. 10", "the DEM blade stresses at h = 350 mm (the average force of "
+         "two neighbouring contacts over their distance, averaged over 18-22 mm of travel) are "
+         "lower than Sokolovski's but higher than the nonpolar MPM stresses."),
+        ("pdr", "Fig. 11", "PDR >= 0.15 at 15 mm: the DEM slip line lies between the observed "
+         "and Sokolovski lines at the surface and outside Sokolovski's near the blade's tip; the "
+         "nonpolar slip line follows the observed and Sokolovski lines near the tip; polar MPM "
+         "gives a straighter line at almost 45 deg."),
         ("yield", "Figs. 12-13", "yield points concentrate around the slip line, more and "
          "broader on the coarser mesh; J' shows a definite band that converges under mesh "
          "refinement."),
@@ -653,18 +844,28 @@ def write_report(out, runs, figures, rows, heights, bands, args):
                                                              shear / normal))
         if key == "drafts":
             lines += ["", "| h [mm] | Sokolovski | ours, fixed floor | ours, Coulomb floor | "
-                      "ours, polar | polar / nonpolar | experiment (derived) |",
-                      "| ---: | ---: | ---: | ---: | ---: | ---: | ---: |"]
+                      "ours, polar | polar / nonpolar | ours, DEM | experiment (derived) |",
+                      "| ---: | ---: | ---: | ---: | ---: | ---: | ---: | ---: |"]
             for r in rows:
-                lines.append("| %.0f | %s | %s (%s) | %s (%s) | %s | %s | %s |" % (
+                lines.append("| %.0f | %s | %s (%s) | %s (%s) | %s | %s | %s (%s; %s) | %s |" % (
                     r["depth_m"] * 1000, fmt(r["sokolovski"]), fmt(r["nonpolar_fixed_floor"]),
                     percent(r["nonpolar_fixed_floor"], r["sokolovski"]),
                     fmt(r["nonpolar_coulomb_floor"]),
                     percent(r["nonpolar_coulomb_floor"], r["sokolovski"]), fmt(r["polar"]),
-                    percent(r["polar"], r["nonpolar_fixed_floor"]), fmt(r.get("experiment"))))
+                    percent(r["polar"], r["nonpolar_fixed_floor"]), fmt(r["dem"]),
+                    percent(r["dem"], r["sokolovski"]), percent(r["dem"], r.get("experiment")),
+                    fmt(r.get("experiment"))))
             lines += ["", "Drafts in N/m over 15-35 mm; percentages against Sokolovski "
-                      "(polar: against our nonpolar, fixed floor). The experiment is derived: "
-                      "Sokolovski x (1.12, 1.06, 1.05) / (1 - 0.25, 0.11, 0.09)."]
+                      "(polar: against our nonpolar, fixed floor; DEM: against Sokolovski and "
+                      "the experiment). The experiment is derived: Sokolovski x (1.12, 1.06, "
+                      "1.05) / (1 - 0.25, 0.11, 0.09)."]
+        if key == "dem_stress" and dem_stress:
+            lines += ["", "Mean over the blade's buried face [kPa]:", "",
+                      "| | normal | shear |", "| --- | ---: | ---: |"]
+            for who, label in (("dem", "DEM (neighbouring contacts)"),
+                               ("sokolovski", "Sokolovski"), ("mpm", "our nonpolar MPM")):
+                if who in dem_stress:
+                    lines.append("| %s | %.2f | %.2f |" % (label, *dem_stress[who]))
         if key == "yield" and bands:
             lines += ["", "| mesh | share of particles in front of the blade at yield | J' band "
                       "width across the slip line at mid-depth [mm] |", "| --- | ---: | ---: |"]

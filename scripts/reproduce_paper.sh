@@ -1,12 +1,15 @@
 #!/usr/bin/env bash
-# The MPM results of Coetzee (2014) from one command: every run behind the paper's Figs. 1-3
-# and 6-13, then one PNG per figure beside the statement the paper makes about it
-# (OUT/report.md, docs/validation.md "The paper's figures").
+# The results of Coetzee (2014) from one command: every MPM (nonpolar and polar) and DEM run
+# behind the paper's Figs. 1-3 and 6-13, then one PNG per figure beside the statement the
+# paper makes about it (OUT/report.md, docs/validation.md "The paper's figures").
 #
-#   scripts/reproduce_paper.sh [--quick] [--jobs N] [--out DIR] [--resume]
+#   scripts/reproduce_paper.sh [--quick] [--no-dem] [--jobs N] [--out DIR] [--resume]
 #
-#   --quick   every run on a 3x coarser mesh (40 x 24 for 120 x 70, 27 x 16 for 80 x 50):
-#             the same cases and figures in a few minutes; CI runs it. Not for conclusions.
+#   --quick   every MPM run on a 3x coarser mesh (40 x 24 for 120 x 70, 27 x 16 for 80 x 50),
+#             every DEM run with grains twice as large (an eighth of the cost), the layers' DEM
+#             run at 50 mm/s: the same cases and figures in a few minutes; CI runs it. Not for
+#             conclusions.
+#   --no-dem  the MPM runs only (DEM adds four runs, about as much processor time as the MPM).
 #   --jobs N  runs at the same time (default 2, this machine's cores); each run is one thread.
 #   --out DIR results (default out/paper, or out/paper_quick with --quick).
 #   --resume  run only the cases that have not completed in DIR (after a stop, or a fix).
@@ -18,19 +21,21 @@ root=$(cd "$(dirname "$0")/.." && pwd)
 cd "$root"
 
 quick=false
+dem=true
 resume=false
 jobs=2
 out=
 while [ $# -gt 0 ]; do
   case "$1" in
     --quick) quick=true ;;
+    --no-dem) dem=false ;;
     --resume) resume=true ;;
     --jobs) jobs=$2; shift ;;
     --jobs=*) jobs=${1#--jobs=} ;;
     --out) out=$2; shift ;;
     --out=*) out=${1#--out=} ;;
     -h | --help) sed -n '2,16p' "$0" | sed 's/^# \{0,1\}//'; exit 0 ;;
-    *) echo "reproduce_paper.sh: unknown argument '$1' (valid: --quick, --jobs N, --out DIR, --resume)" >&2
+    *) echo "reproduce_paper.sh: unknown argument '$1' (valid: --quick, --no-dem, --jobs N, --out DIR, --resume)" >&2
        exit 2 ;;
   esac
   shift
@@ -43,10 +48,15 @@ if [ "$quick" = true ]; then
   out=${out:-out/paper_quick}
   fine=40x24
   coarse=27x16
+  # Grains of 16-24 mm: a quarter of the grains, twice the step; a shorter rain.
+  dem_grains="--size-min 0.016 --size-max 0.024 --settle-time 1.5"
+  dem_flow_speed=0.05
 else
   out=${out:-out/paper}
   fine=120x70
   coarse=80x50
+  dem_grains=
+  dem_flow_speed=0.01  # the experiment's 10 mm/s
 fi
 
 "$root/scripts/setup.sh"
@@ -59,6 +69,16 @@ driver=$root/build/release/examples/example_03_flat_blade
 source "$root/scripts/flat_blade_queue.sh"
 queue_mesh=$fine
 queue_resume=$resume
+# DEM (the paper's PFC2D model, the driver's calibrated corn grains): Figs. 1-2 (layers at
+# 100-400 mm, h = 200 mm), 8 (drafts at the three depths), 10 (blade stresses at h = 350 mm)
+# and 11 (PDR at 15 mm, h = 250 mm). The longest run first: the queue then packs the rest.
+if [ "$dem" = true ]; then
+  queue_case dem_flow "--method dem --depth 0.2 --travel 0.4 --speed $dem_flow_speed \
+    --layer-thickness 0.025 --frame-interval 0.1 $dem_grains"
+  for depth in 0.35 0.25 0.15; do
+    queue_case "dem_h${depth}" "--method dem --depth $depth $dem_grains"
+  done
+fi
 # Each case: the paper's defaults (Table 1, h = 250 mm, psi = 2 deg, fixed floor, MUSL, linear
 # shape functions) unless its arguments say otherwise.
 # Figs. 1-3: h = 200 mm pushed 400 mm for psi = 2, 10, 26 deg. On a Coulomb floor (the fixed

@@ -15,8 +15,7 @@ log=$(mktemp)
 # Running this command again replaces the results of the same case (unless told otherwise).
 extra=(--replace true)
 for arg in "$@"; do
-  # dem: the discrete model's driver (--method dem) has no run folders to replace.
-  case "$arg" in --replace* | --restart* | --check* | --help | -h | dem) extra=() ;; esac
+  case "$arg" in --replace* | --restart* | --check* | --help | -h) extra=() ;; esac
 done
 ./build/release/examples/example_03_flat_blade "${extra[@]}" "$@" | tee "$log"
 out=$(sed -n 's/^results in \([^:]*\):.*/\1/p' "$log")

@@ -20,7 +20,7 @@ if [ "$which" = dem ]; then
   for depth in 0.15 0.25 0.35; do
     run=out/flat_blade_dem/dense_mu0.1_rr0.2_h$depth  # the calibrated default
     /usr/bin/time -f "%e s wall" ./build/release/examples/example_03_flat_blade --method dem \
-      --depth "$depth" --threads 1 --out "$run" "$@"
+      --depth "$depth" --threads 1 --replace true --out "$run" "$@"
     /usr/bin/python3 scripts/plot_dem_flat_blade.py stress "$run" --out "$run/blade_stress.png"
     /usr/bin/python3 scripts/plot_dem_flat_blade.py pdr "$run" --out "$run/pdr.png"
     runs+=("$run")

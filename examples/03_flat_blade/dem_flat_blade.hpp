@@ -36,6 +36,7 @@
 #include "cosmpm/dem/hdf5_frames.hpp"
 #include "cosmpm/io/csv.hpp"
 #include "cosmpm/io/progress.hpp"
+#include "cosmpm/io/run_directory.hpp"
 
 namespace flat_blade_dem {
 
@@ -80,13 +81,16 @@ struct Config {
   double travel = 0.035;
   double gravity = 9.81;
   // Packing: rained from a fixed height, settled, trimmed to the depth, settled again.
-  long particles = 0;            // 0: enough to fill depth + fill_margin (about 10,000 at 350 mm)
-  double rain_height = 0.4;      // m: the lattice's lowest row
-  double fill_margin = 0.03;     // m of layer above the depth before trimming
-  double porosity_guess = 0.17;  // for the default particle count only
-  double settle_ratio = 1e-3;    // PFC's mean unbalanced force ratio
-  double settle_time = 4.0;      // s, at most, for the rain
-  double resettle_time = 1.0;    // s, at most, after trimming
+  long particles = 0;         // 0: enough to fill depth + fill_margin (about 10,000 at 350 mm)
+  double rain_height = 0.4;   // m: the lattice's lowest row
+  double fill_margin = 0.03;  // m of layer above the depth before trimming
+  // For the default particle count only. Unset: 0.12 for a frictionless rain (the dense
+  // packing: 0.111-0.117 measured), 0.17 otherwise; with 0.17 the dense layer at h = 350 mm
+  // reached only 5 mm above h before trimming.
+  std::optional<double> porosity_guess;
+  double settle_ratio = 1e-3;  // PFC's mean unbalanced force ratio
+  double settle_time = 4.0;    // s, at most, for the rain
+  double resettle_time = 1.0;  // s, at most, after trimming
   double time_step_fraction = 0.8;
   // Analysis (the paper): draft averaged over 15-35 mm, blade stresses over 18-22 mm in bins,
   // PDR >= 0.15 at 15 mm, coloured layers at 100-400 mm.
@@ -102,6 +106,8 @@ struct Config {
   double frame_interval = 0.005;  // m of travel
   bool frames = true;
   std::string output_directory;
+  bool replace = false;  // delete an earlier run's results in the output folder first
+  bool check = false;    // validate, print the particle and step counts, write nothing
   int threads = 0;
   long seed = 1;
   // Biaxial test.
@@ -124,6 +130,10 @@ struct Config {
     return name.str();
   }
   double blade_face() const { return blade_start + blade_thickness; }
+  double planned_porosity() const {
+    if (porosity_guess) return *porosity_guess;
+    return packing_friction && *packing_friction == 0.0 ? 0.12 : 0.17;
+  }
 };
 
 namespace detail {
@@ -201,6 +211,9 @@ inline bool parse(Config& c, const std::vector<std::string>& args) {
   whole("particles", c.particles);
   real("rain-height", c.rain_height);
   real("fill-margin", c.fill_margin);
+  set["porosity-guess"] = [&c](const std::string& v, const std::string& w) {
+    c.porosity_guess = number(v, w);
+  };
   real("settle-ratio", c.settle_ratio);
   real("settle-time", c.settle_time);
   real("resettle-time", c.resettle_time);
@@ -214,10 +227,17 @@ inline bool parse(Config& c, const std::vector<std::string>& args) {
   real("layer-thickness", c.layer_thickness);
   text("snapshots", c.snapshots);
   real("frame-interval", c.frame_interval);
-  set["frames"] = [&c](const std::string& v, const std::string& w) {
-    if (v != "true" && v != "false") throw cosmpm::Error(w + ": '" + v + "' is not true/false");
-    c.frames = v == "true";
+  std::vector<std::string> flags;  // may stand alone: `--check` is `--check true`
+  auto flag = [&](const char* name, bool& target) {
+    flags.emplace_back(name);
+    set[name] = [&target](const std::string& v, const std::string& w) {
+      if (v != "true" && v != "false") throw cosmpm::Error(w + ": '" + v + "' is not true/false");
+      target = v == "true";
+    };
   };
+  flag("frames", c.frames);
+  flag("replace", c.replace);
+  flag("check", c.check);
   text("out", c.output_directory);
   set["threads"] = [&c](const std::string& v, const std::string& w) {
     c.threads = static_cast<int>(number(v, w));
@@ -235,16 +255,18 @@ inline bool parse(Config& c, const std::vector<std::string>& args) {
       for (const auto& [name, setter] : set) std::printf("  --%s\n", name.c_str());
       return false;
     }
-    if (args[i].rfind("--", 0) != 0 || i + 1 >= args.size()) {
+    const std::string name = args[i].rfind("--", 0) == 0 ? args[i].substr(2) : std::string();
+    const bool alone = std::find(flags.begin(), flags.end(), name) != flags.end() &&
+                       (i + 1 >= args.size() || args[i + 1].rfind("--", 0) == 0);
+    if (name.empty() || (i + 1 >= args.size() && !alone)) {
       throw cosmpm::Error("command line: expected '--name value' at '" + args[i] + "'");
     }
-    const std::string name = args[i].substr(2);
     const auto it = set.find(name);
     if (it == set.end()) {
       throw cosmpm::Error("command line: unknown DEM parameter '--" + name + "' (run with --help)");
     }
-    it->second(args[i + 1], "command line --" + name);
-    ++i;
+    it->second(alone ? "true" : args[i + 1], "command line --" + name);
+    if (!alone) ++i;
   }
   return true;
 }
@@ -286,7 +308,7 @@ inline void validate(const Config& c) {
                    Bounds::right_closed);
   require_in_range(where, "particles", static_cast<double>(c.particles), 0.0, 1e8, Bounds::closed);
   require_positive(where, "fill-margin", c.fill_margin);
-  require_in_range(where, "porosity-guess", c.porosity_guess, 0.0, 1.0);
+  require_in_range(where, "porosity-guess", c.planned_porosity(), 0.0, 1.0);
   require_positive(where, "settle-ratio", c.settle_ratio);
   require_positive(where, "settle-time", c.settle_time);
   require_positive(where, "resettle-time", c.resettle_time);
@@ -349,8 +371,9 @@ void write_particles(const fs::path& path, const Sim& sim, const std::vector<dou
   }
 }
 
+// `folder` is null for --check true: the run stops before it writes anything.
 template <class Law>
-int run_flat_blade(const Config& c, const fs::path& out, const Law& contact_law,
+int run_flat_blade(const Config& c, cosmpm::io::RunDirectory* folder, const Law& contact_law,
                    const std::optional<Law>& packing_law) {
   using namespace cosmpm;
   using Sim = dem::Simulation<Law, dem::LocalDamping>;
@@ -360,7 +383,7 @@ int run_flat_blade(const Config& c, const fs::path& out, const Law& contact_law,
   Index count = c.particles;
   if (count == 0) {
     const double area = (c.rig_length - face) * (c.depth + c.fill_margin);
-    count = static_cast<Index>(std::ceil(area * (1.0 - c.porosity_guess) / g.mean_area()));
+    count = static_cast<Index>(std::ceil(area * (1.0 - c.planned_porosity()) / g.mean_area()));
   }
   dem::Assembly assembly;
   dem::rain(assembly, g, count, {face, c.rig_length, c.rain_height, c.rig_height},
@@ -395,6 +418,14 @@ int run_flat_blade(const Config& c, const fs::path& out, const Law& contact_law,
       contact::RigidBody<2>::box(Vec<2>(c.blade_start, c.blade_height), Vec<2>(face, c.rig_height)),
       smooth);
   const double dt = c.time_step_fraction * sim.critical_time_step();
+  if (c.check) {
+    // At most: the whole rain and resettle time, then the cut.
+    const double seconds = c.settle_time + c.resettle_time + c.travel / c.speed;
+    std::printf("case checked: %ld particles, %ld steps of %.3g s; nothing written\n",
+                static_cast<long>(sim.assembly().body_count()),
+                static_cast<long>(std::ceil(seconds / dt)), dt);
+    return 0;
+  }
   if (packing_law) sim.set_law(*packing_law);
   std::printf("DEM flat blade: h = %.0f mm, %ld %s (%ld disks), dt = %.3g s\n", c.depth * 1000,
               static_cast<long>(sim.assembly().body_count()),
@@ -436,7 +467,7 @@ int run_flat_blade(const Config& c, const fs::path& out, const Law& contact_law,
       static_cast<long>(removed), static_cast<long>(sim.assembly().body_count()), resettled.time,
       porosity, bulk_density);
   {
-    io::CsvWriter packing(out / "packing.csv",
+    io::CsvWriter packing(folder->claim("packing.csv"),
                           {"bodies", "elements", "porosity", "bulk_density_kg_m3", "rain_time_s",
                            "resettle_time_s", "unbalanced_force_ratio"});
     packing.write_row({static_cast<double>(sim.assembly().body_count()),
@@ -458,11 +489,11 @@ int run_flat_blade(const Config& c, const fs::path& out, const Law& contact_law,
   const auto reference = sokolovski(778.0);
   const auto reference_dem = sokolovski(bulk_density);
   {
-    io::CsvWriter wall(out / "sokolovski_wall.csv",
+    io::CsvWriter wall(folder->claim("sokolovski_wall.csv"),
                        {"depth_m", "normal_pressure_Pa", "shear_stress_Pa"});
     for (const auto& w : reference.wall)
       wall.write_row({w.depth, w.normal_pressure, w.shear_stress});
-    io::CsvWriter slip(out / "sokolovski_slip_line.csv", {"distance_m", "depth_m"});
+    io::CsvWriter slip(folder->claim("sokolovski_slip_line.csv"), {"distance_m", "depth_m"});
     for (const auto& s : reference.slip_line) slip.write_row({s.distance, s.depth});
   }
 
@@ -480,8 +511,12 @@ int run_flat_blade(const Config& c, const fs::path& out, const Law& contact_law,
   }
   std::vector<double> pdr(layer.size(), 0.0);
   std::optional<dem::FrameWriter> frames;
-  if (c.frames) frames.emplace(out / "frames", "dem_flat_blade");
+  if (c.frames) {
+    frames.emplace(folder->path() / "frames", "dem_flat_blade");
+    folder->claim("frames/dem_flat_blade.xdmf");
+  }
   auto write_frame = [&](double travel) {
+    folder->claim(fs::path("frames") / frames->frame_path(frames->frame_count()).filename());
     const auto& body = grains_now.elements().get<particles::field::Body>();
     const auto& start_position = grains_now.bodies().get<particles::field::InitialPosition<2>>();
     for (std::size_t e = 0; e < pdr.size(); ++e) {
@@ -501,7 +536,7 @@ int run_flat_blade(const Config& c, const fs::path& out, const Law& contact_law,
   std::size_t next_snapshot = 0;
   double next_frame = c.frame_interval;
   io::CsvWriter forces(
-      out / "forces.csv",
+      folder->claim("forces.csv"),
       {"time_s", "displacement_m", "draft_N_per_m", "vertical_N_per_m", "floor_x_N_per_m",
        "floor_y_N_per_m", "right_end_x_N_per_m", "blade_contacts"});
   dem::FaceStressAverage stress(c.blade_height, c.stress_bin);
@@ -549,7 +584,8 @@ int run_flat_blade(const Config& c, const fs::path& out, const Law& contact_law,
     }
     while (next_snapshot < snapshots.size() && travel >= snapshots[next_snapshot] - 1e-12) {
       const long mm = std::lround(snapshots[next_snapshot] * 1000);
-      write_particles(out / ("particles_" + std::to_string(mm) + "mm.csv"), sim, layer, travel);
+      write_particles(folder->claim("particles_" + std::to_string(mm) + "mm.csv"), sim, layer,
+                      travel);
       ++next_snapshot;
     }
     if (frames && travel >= next_frame - 1e-12) {
@@ -561,7 +597,7 @@ int run_flat_blade(const Config& c, const fs::path& out, const Law& contact_law,
   const double cut_seconds =
       std::chrono::duration<double>(std::chrono::steady_clock::now() - cut_start).count();
   {
-    io::CsvWriter profile(out / "blade_stress.csv",
+    io::CsvWriter profile(folder->claim("blade_stress.csv"),
                           {"height_above_tip_m", "depth_m", "neighbour_normal_Pa",
                            "neighbour_shear_Pa", "samples", "binned_normal_Pa", "binned_shear_Pa"});
     for (const auto& bin : stress.bins()) {
@@ -578,33 +614,33 @@ int run_flat_blade(const Config& c, const fs::path& out, const Law& contact_law,
   const double total_seconds =
       std::chrono::duration<double>(std::chrono::steady_clock::now() - wall_start).count();
   {
-    io::CsvWriter summary(out / "summary.csv", {"depth_m",
-                                                "bodies",
-                                                "elements",
-                                                "clumps",
-                                                "porosity",
-                                                "bulk_density_kg_m3",
-                                                "average_draft_N_per_m",
-                                                "average_vertical_N_per_m",
-                                                "sokolovski_draft_N_per_m",
-                                                "sokolovski_vertical_N_per_m",
-                                                "sokolovski_dem_density_draft_N_per_m",
-                                                "difference_percent",
-                                                "time_step_s",
-                                                "cutting_steps",
-                                                "packing_seconds",
-                                                "cutting_seconds",
-                                                "total_seconds",
-                                                "threads",
-                                                "blade_face_x_m",
-                                                "speed_m_per_s",
-                                                "travel_m",
-                                                "average_from_m",
-                                                "average_to_m",
-                                                "friction",
-                                                "aspect",
-                                                "rolling_friction",
-                                                "packing_friction"});
+    io::CsvWriter summary(folder->claim("summary.csv"), {"depth_m",
+                                                         "bodies",
+                                                         "elements",
+                                                         "clumps",
+                                                         "porosity",
+                                                         "bulk_density_kg_m3",
+                                                         "average_draft_N_per_m",
+                                                         "average_vertical_N_per_m",
+                                                         "sokolovski_draft_N_per_m",
+                                                         "sokolovski_vertical_N_per_m",
+                                                         "sokolovski_dem_density_draft_N_per_m",
+                                                         "difference_percent",
+                                                         "time_step_s",
+                                                         "cutting_steps",
+                                                         "packing_seconds",
+                                                         "cutting_seconds",
+                                                         "total_seconds",
+                                                         "threads",
+                                                         "blade_face_x_m",
+                                                         "speed_m_per_s",
+                                                         "travel_m",
+                                                         "average_from_m",
+                                                         "average_to_m",
+                                                         "friction",
+                                                         "aspect",
+                                                         "rolling_friction",
+                                                         "packing_friction"});
     summary.write_row({c.depth,
                        static_cast<double>(sim.assembly().body_count()),
                        static_cast<double>(sim.assembly().element_count()),
@@ -646,14 +682,19 @@ int run_flat_blade(const Config& c, const fs::path& out, const Law& contact_law,
               reference.vertical_force_per_width);
   std::printf(
       "results in %s: forces.csv, blade_stress.csv, summary.csv, frames/dem_flat_blade.xdmf\n",
-      out.c_str());
+      folder->path().c_str());
   return 0;
 }
 
 template <class Law>
-int run_biaxial(const Config& c, const fs::path& out, const Law& contact_law,
+int run_biaxial(const Config& c, cosmpm::io::RunDirectory* folder, const Law& contact_law,
                 const std::optional<Law>& packing_law) {
   using namespace cosmpm;
+  if (c.check) {
+    std::printf("case checked: %ld particles; nothing written\n",
+                static_cast<long>(c.biaxial_particles));
+    return 0;
+  }
   dem::BiaxialSettings s;
   s.particles = c.biaxial_particles;
   s.confining_stress = c.confining_stress;
@@ -673,14 +714,15 @@ int run_biaxial(const Config& c, const fs::path& out, const Law& contact_law,
   const double seconds =
       std::chrono::duration<double>(std::chrono::steady_clock::now() - wall_start).count();
   {
-    io::CsvWriter curve(out / "biaxial.csv", {"axial_strain", "volumetric_strain", "sigma1_Pa",
-                                              "sigma3_Pa", "friction_angle_deg"});
+    io::CsvWriter curve(
+        folder->claim("biaxial.csv"),
+        {"axial_strain", "volumetric_strain", "sigma1_Pa", "sigma3_Pa", "friction_angle_deg"});
     for (const auto& p : result.curve) {
       curve.write_row(
           {p.axial_strain, p.volumetric_strain, p.sigma1, p.sigma3, p.friction_angle_deg});
     }
     io::CsvWriter summary(
-        out / "summary.csv",
+        folder->claim("summary.csv"),
         {"particles", "friction", "confining_stress_Pa", "peak_angle_deg", "peak_strain",
          "critical_angle_deg", "critical_dilatancy", "porosity", "compacted", "steps",
          "run_seconds", "aspect", "rolling_friction", "packing_friction"});
@@ -700,7 +742,7 @@ int run_biaxial(const Config& c, const fs::path& out, const Law& contact_law,
       "critical state %.1f deg (dilatancy %.3f); %.1f s\n",
       result.porosity, result.peak_angle_deg, 100 * result.peak_strain, result.critical_angle_deg,
       result.critical_dilatancy, seconds);
-  std::printf("results in %s: biaxial.csv, summary.csv\n", out.c_str());
+  std::printf("results in %s: biaxial.csv, summary.csv\n", folder->path().c_str());
   return 0;
 }
 
@@ -731,10 +773,18 @@ inline std::optional<int> run_if_requested(int& argc, char** argv) {
     detail::validate(c);
     const fs::path out = c.output_directory.empty() ? fs::path("out/flat_blade_dem") / c.tag()
                                                     : fs::path(c.output_directory);
-    fs::create_directories(out);
+    // As the MPM runs: a fresh run refuses a folder holding an earlier run's results.
+    std::optional<cosmpm::io::RunDirectory> folder;
+    if (!c.check) {
+      using Mode = cosmpm::io::RunDirectory::Mode;
+      folder.emplace(
+          out, c.replace ? Mode::replace : Mode::fresh, "example_03_flat_blade --method dem",
+          c.output_directory.empty() ? "--out (default out/flat_blade_dem/<tag>)" : "--out");
+    }
+    cosmpm::io::RunDirectory* run_folder = folder ? &*folder : nullptr;
     auto run = [&](const auto& contact_law, const auto& packing_law) {
-      return c.experiment == "biaxial" ? run_biaxial(c, out, contact_law, packing_law)
-                                       : run_flat_blade(c, out, contact_law, packing_law);
+      return c.experiment == "biaxial" ? run_biaxial(c, run_folder, contact_law, packing_law)
+                                       : run_flat_blade(c, run_folder, contact_law, packing_law);
     };
     Config packing = c;  // the packing law: the packing friction, no rolling resistance
     packing.particle_friction = c.packing_friction.value_or(c.particle_friction);
