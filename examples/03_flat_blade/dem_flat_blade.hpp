@@ -594,6 +594,16 @@ int run_flat_blade(const Config& c, cosmpm::io::RunDirectory* folder, const Law&
     }
   }
   progress.finish(sim.time(), sim.step_count());
+  // Rounding can end the loop a hair short of --travel (399.99 of 400 mm): the snapshots and
+  // the frame due at the end of travel are still written, at the travel reached.
+  const double reached = (sim.time() - *start) * c.speed;
+  while (next_snapshot < snapshots.size() && snapshots[next_snapshot] <= c.travel + 1e-12) {
+    const long mm = std::lround(snapshots[next_snapshot] * 1000);
+    write_particles(folder->claim("particles_" + std::to_string(mm) + "mm.csv"), sim, layer,
+                    reached);
+    ++next_snapshot;
+  }
+  if (frames && next_frame - c.frame_interval < c.travel - 1e-9) write_frame(reached);
   const double cut_seconds =
       std::chrono::duration<double>(std::chrono::steady_clock::now() - cut_start).count();
   {
