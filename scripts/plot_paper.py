@@ -123,6 +123,8 @@ class Run:
             text += ", Coulomb floor"
         if float(self.case.get("dilatancy-cutoff", "0")) > 0:
             text += ", cut-off %s" % self.case["dilatancy-cutoff"]
+        if float(self.case.get("flip", "1")) < 1:
+            text += ", %.0f %% PIC" % (100 * (1 - float(self.case["flip"])))
         rotation = self.case.get("blade-rotation", "held")
         if self.case.get("blade-rotation-fixed") == "false":  # older case files
             rotation = "free"
@@ -670,7 +672,7 @@ def main():
     figures["flow"] = plot_flow(runs, out)
     figures["surface"], heights = plot_free_surfaces(runs, out)
     figures["psi"] = plot_forces(
-        pick("h0.35", "h0.35_psi10", "h0.35_psi26", "polar_h0.35"),
+        pick("fig6_psi2", "fig6_psi10", "fig6_psi26", "polar_h0.35"),
         "Fig. 6: blade forces for three dilatancy angles, h = 350 mm", "fig06_forces_psi.png",
         out)
     figures["depth"] = plot_forces(pick("h0.15", "h0.25", "h0.35"),
@@ -743,7 +745,7 @@ def write_report(out, runs, figures, rows, heights, bands, dem_stress, args):
         if isinstance(run, DemRun):
             continue
         status, seconds = status_of(name)
-        shown = {"depth": None, "psi": None, "floor": None, "dilatancy-cutoff": "0",
+        shown = {"depth": None, "psi": None, "floor": None, "dilatancy-cutoff": "0", "flip": "1",
                  "polar": "false", "blade-rotation": "held", "blade-rotation-fixed": "true",
                  "separation": "false", "travel": None}
         arguments = " ".join("%s=%s" % (k, run.case[k]) for k, default in shown.items()
@@ -811,7 +813,7 @@ def write_report(out, runs, figures, rows, heights, bands, dem_stress, args):
                     cells.append("%.0f" % (value[0] * 1000) if value else "-")
                 lines.append("| %s | %s |" % (psi, " | ".join(cells)))
         if key in ("psi", "depth"):
-            names = (("h0.35", "h0.35_psi10", "h0.35_psi26", "polar_h0.35")
+            names = (("fig6_psi2", "fig6_psi10", "fig6_psi26", "polar_h0.35")
                      if key == "psi" else ("h0.15", "h0.25", "h0.35"))
             windows = ((0.015, 0.035), (0.035, 0.05), (0.05, 0.1))
             lines += ["", "Average draft [N/m] over stretches of travel:", "",
