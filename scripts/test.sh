@@ -75,10 +75,11 @@ xvfb-run -a -s "-screen 0 1280x1024x24" pvbatch --force-offscreen-rendering \
 ./build/release/examples/example_04_granular_collapse --cell 0.005 --end-time 0.05 \
   --transfer apic --wall 0.2 --frames false --out "$smoke/04w" || [ $? -eq 2 ]
 /usr/bin/python3 scripts/plot_granular_collapse.py "$smoke/04"
-# The paper's figures on coarse meshes: every run of the set, every plot and the report.
+# The paper's figures on coarse meshes (DEM with coarse grains): every run of the set, every
+# plot and the report.
 scripts/reproduce_paper.sh --quick --out "$smoke/paper"
 for figure in fig01_02_flow fig03_free_surface fig06_forces_psi fig07_forces_depth \
-  fig08_draft_depth fig09_blade_stress fig11_pdr fig12_13_yield_shear; do
+  fig08_draft_depth fig09_blade_stress fig10_dem_blade_stress fig11_pdr fig12_13_yield_shear; do
   test -s "$smoke/paper/$figure.png" || { echo "reproduce_paper.sh made no $figure.png" >&2; exit 1; }
 done
 rm -rf "$smoke"
