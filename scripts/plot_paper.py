@@ -675,7 +675,7 @@ def main():
         pick("fig6_psi2", "fig6_psi10", "fig6_psi26", "polar_h0.35"),
         "Fig. 6: blade forces for three dilatancy angles, h = 350 mm", "fig06_forces_psi.png",
         out)
-    figures["depth"] = plot_forces(pick("h0.15", "h0.25", "h0.35"),
+    figures["depth"] = plot_forces(pick("fig7_h0.15", "fig7_h0.25", "fig6_psi2"),
                                    "Fig. 7: blade forces at three depths (nonpolar, psi = 2)",
                                    "fig07_forces_depth.png", out)
     rows = draft_table(runs)
@@ -814,7 +814,7 @@ def write_report(out, runs, figures, rows, heights, bands, dem_stress, args):
                 lines.append("| %s | %s |" % (psi, " | ".join(cells)))
         if key in ("psi", "depth"):
             names = (("fig6_psi2", "fig6_psi10", "fig6_psi26", "polar_h0.35")
-                     if key == "psi" else ("h0.15", "h0.25", "h0.35"))
+                     if key == "psi" else ("fig7_h0.15", "fig7_h0.25", "fig6_psi2"))
             windows = ((0.015, 0.035), (0.035, 0.05), (0.05, 0.1))
             lines += ["", "Average draft [N/m] over stretches of travel:", "",
                       "| run | " + " | ".join("%.0f-%.0f mm" % (a * 1000, b * 1000)

@@ -111,10 +111,16 @@ for psi in 26 10 2; do
   queue_case "fig6_psi${psi}" "--depth 0.35 --travel 0.1 --psi $psi $cutoff --flip 0.95"
 done
 queue_case h0.35_psi2_floor "--depth 0.35 --floor friction"
-# Figs. 7-9 and 11-13: psi = 2 at the three depths on the paper's fixed floor, 100 mm of travel;
-# Fig. 8 also on the Coulomb floor; Figs. 12-13 on the coarser mesh too.
+# Fig. 7: psi = 2 at the three depths to 100 mm, with Fig. 6's 5 % PIC (h = 350 mm is
+# fig6_psi2): under pure FLIP the h = 350 mm run, too, can stop where the heap spills over the
+# blade (at 71 mm on 2026-12-02). Figs. 8-9 and 11-13: psi = 2 at the three depths on the
+# paper's fixed floor to 35 mm, pure FLIP as the polar runs; Fig. 8 also on the Coulomb floor;
+# Figs. 12-13 on the coarser mesh too.
+for depth in 0.25 0.15; do
+  queue_case "fig7_h${depth}" "--depth $depth --travel 0.1 --flip 0.95"
+done
 for depth in 0.35 0.25 0.15; do
-  queue_case "h${depth}" "--depth $depth --travel 0.1"
+  queue_case "h${depth}" "--depth $depth"
 done
 for depth in 0.25 0.15; do
   queue_case "h${depth}_floor" "--depth $depth --floor friction"
