@@ -425,6 +425,17 @@ def plot_drafts(rows, out):
     return name
 
 
+def label_stress_axes(axes):
+    """Normal (left) and shear (right) stress against depth, the surface at the top."""
+    axes[0].set_xlabel("normal stress on the blade [kPa]")
+    axes[1].set_xlabel("shear stress on the blade [kPa]")
+    axes[0].set_ylabel("depth below the initial surface [mm]")
+    axes[0].invert_yaxis()
+    for ax in axes:
+        ax.grid(True, alpha=0.3)
+    axes[0].legend(fontsize=7)
+
+
 def plot_blade_stress(selection, out):
     selection = [r for r in selection if (r.folder / "blade_stress.csv").exists()]
     if not selection:
@@ -442,13 +453,7 @@ def plot_blade_stress(selection, out):
     axes[0].plot(wall["normal_pressure_Pa"] / 1000, wall["depth_m"] * 1000, "k--",
                  label="Sokolovski")
     axes[1].plot(wall["shear_stress_Pa"] / 1000, wall["depth_m"] * 1000, "k--")
-    axes[0].set_xlabel("normal stress on the blade [kPa]")
-    axes[1].set_xlabel("shear stress on the blade [kPa]")
-    axes[0].set_ylabel("depth below the initial surface [mm]")
-    axes[0].invert_yaxis()
-    for ax in axes:
-        ax.grid(True, alpha=0.3)
-    axes[0].legend(fontsize=7)
+    label_stress_axes(axes)
     fig.suptitle("Fig. 9: blade stresses, h = 350 mm, 20 mm of travel")
     fig.tight_layout()
     name = "fig09_blade_stress.png"
@@ -489,13 +494,7 @@ def plot_dem_blade_stress(dem, mpm, out):
                      color="C0")
         numbers["mpm"] = (float(np.mean(m["normal_traction_Pa"][on])) / 1000,
                           float(np.mean(m["shear_traction_Pa"][on])) / 1000)
-    axes[0].set_xlabel("normal stress on the blade [kPa]")
-    axes[1].set_xlabel("shear stress on the blade [kPa]")
-    axes[0].set_ylabel("depth below the initial surface [mm]")
-    axes[0].invert_yaxis()
-    for ax in axes:
-        ax.grid(True, alpha=0.3)
-    axes[0].legend(fontsize=7)
+    label_stress_axes(axes)
     fig.suptitle("Fig. 10: blade stresses, DEM, h = %.0f mm, 18-22 mm of travel"
                  % (dem.depth * 1000))
     fig.tight_layout()
