@@ -425,6 +425,22 @@ def plot_drafts(rows, out):
     return name
 
 
+def mpm_blade_profile(folder):
+    """An MPM run's blade_stress.csv over the buried face: depth [mm], normal and shear [kPa]."""
+    profile = read_csv(folder / "blade_stress.csv")
+    keep = (profile["depth_m"] >= -1e-9) & (profile["nodes"] > 0)
+    return (profile["depth_m"][keep] * 1000, profile["normal_traction_Pa"][keep] / 1000,
+            profile["shear_traction_Pa"][keep] / 1000)
+
+
+def plot_sokolovski_wall(axes, folder):
+    wall = read_csv(folder / "sokolovski_wall.csv")
+    axes[0].plot(wall["normal_pressure_Pa"] / 1000, wall["depth_m"] * 1000, "k--",
+                 label="Sokolovski")
+    axes[1].plot(wall["shear_stress_Pa"] / 1000, wall["depth_m"] * 1000, "k--")
+    return wall
+
+
 def label_stress_axes(axes):
     """Normal (left) and shear (right) stress against depth, the surface at the top."""
     axes[0].set_xlabel("normal stress on the blade [kPa]")
@@ -442,17 +458,10 @@ def plot_blade_stress(selection, out):
         return None
     fig, axes = plt.subplots(1, 2, figsize=(9, 5), sharey=True)
     for i, run in enumerate(selection):
-        profile = read_csv(run.folder / "blade_stress.csv")
-        keep = (profile["depth_m"] >= -1e-9) & (profile["nodes"] > 0)
-        depth = profile["depth_m"][keep] * 1000
-        axes[0].plot(profile["normal_traction_Pa"][keep] / 1000, depth, "o-", ms=3,
-                     color="C%d" % i, label=run.label())
-        axes[1].plot(profile["shear_traction_Pa"][keep] / 1000, depth, "o-", ms=3,
-                     color="C%d" % i)
-    wall = read_csv(selection[0].folder / "sokolovski_wall.csv")
-    axes[0].plot(wall["normal_pressure_Pa"] / 1000, wall["depth_m"] * 1000, "k--",
-                 label="Sokolovski")
-    axes[1].plot(wall["shear_stress_Pa"] / 1000, wall["depth_m"] * 1000, "k--")
+        depth, normal, shear = mpm_blade_profile(run.folder)
+        axes[0].plot(normal, depth, "o-", ms=3, color="C%d" % i, label=run.label())
+        axes[1].plot(shear, depth, "o-", ms=3, color="C%d" % i)
+    plot_sokolovski_wall(axes, selection[0].folder)
     label_stress_axes(axes)
     fig.suptitle("Fig. 9: blade stresses, h = 350 mm, 20 mm of travel")
     fig.tight_layout()
@@ -468,7 +477,6 @@ def plot_dem_blade_stress(dem, mpm, out):
     if dem is None or not (dem.folder / "blade_stress.csv").exists():
         return None, None
     profile = read_csv(dem.folder / "blade_stress.csv")
-    wall = read_csv(dem.folder / "sokolovski_wall.csv")
     keep = profile["samples"] > 0
     fig, axes = plt.subplots(1, 2, figsize=(9, 5), sharey=True)
     depth = profile["depth_m"][keep] * 1000
@@ -477,23 +485,18 @@ def plot_dem_blade_stress(dem, mpm, out):
                 label="DEM: neighbouring contacts (the paper's estimate)")
         ax.plot(profile["binned_%s_Pa" % key][keep] / 1000, depth, "s:", ms=3, color="C3",
                 alpha=0.6, label="DEM: contact forces per 10 mm bin")
-    axes[0].plot(wall["normal_pressure_Pa"] / 1000, wall["depth_m"] * 1000, "k--",
-                 label="Sokolovski")
-    axes[1].plot(wall["shear_stress_Pa"] / 1000, wall["depth_m"] * 1000, "k--")
+    wall = plot_sokolovski_wall(axes, dem.folder)
     numbers = {"dem": (float(np.mean(profile["neighbour_normal_Pa"][keep])) / 1000,
                        float(np.mean(profile["neighbour_shear_Pa"][keep])) / 1000)}
     inside = (wall["depth_m"] >= 0) & (wall["depth_m"] <= dem.depth)
     numbers["sokolovski"] = (float(np.mean(wall["normal_pressure_Pa"][inside])) / 1000,
                              float(np.mean(wall["shear_stress_Pa"][inside])) / 1000)
     if mpm is not None and (mpm.folder / "blade_stress.csv").exists():
-        m = read_csv(mpm.folder / "blade_stress.csv")
-        on = (m["depth_m"] >= -1e-9) & (m["nodes"] > 0)
-        axes[0].plot(m["normal_traction_Pa"][on] / 1000, m["depth_m"][on] * 1000, "o-", ms=3,
-                     color="C0", label="ours: nonpolar MPM (%s)" % mpm.mesh)
-        axes[1].plot(m["shear_traction_Pa"][on] / 1000, m["depth_m"][on] * 1000, "o-", ms=3,
-                     color="C0")
-        numbers["mpm"] = (float(np.mean(m["normal_traction_Pa"][on])) / 1000,
-                          float(np.mean(m["shear_traction_Pa"][on])) / 1000)
+        depth, normal, shear = mpm_blade_profile(mpm.folder)
+        axes[0].plot(normal, depth, "o-", ms=3, color="C0",
+                     label="ours: nonpolar MPM (%s)" % mpm.mesh)
+        axes[1].plot(shear, depth, "o-", ms=3, color="C0")
+        numbers["mpm"] = (float(np.mean(normal)), float(np.mean(shear)))
     label_stress_axes(axes)
     fig.suptitle("Fig. 10: blade stresses, DEM, h = %.0f mm, 18-22 mm of travel"
                  % (dem.depth * 1000))
@@ -522,32 +525,29 @@ def fields_at(run, travel):
             "travel": reached, "outline": blade_outline(path)}
 
 
+def slip_line_panel(ax, folder, depth, face, outline):
+    """The wedge ahead of a blade face at x = face: Sokolovski's slip line, the blade."""
+    slip = read_csv(folder / "sokolovski_slip_line.csv")
+    ax.plot(face + slip["distance_m"], depth - slip["depth_m"], "c-", lw=1.2, zorder=3,
+            label="Sokolovski slip line")
+    if outline is not None:
+        ax.fill(outline[:, 0], outline[:, 1], color="0.5", zorder=3)
+    ax.set_aspect("equal")
+    ax.set_xlim(face - 0.03, face + 2.6 * depth)
+    ax.set_ylim(0, depth * 1.3)
+
+
 def decorate(ax, run, fields):
-    slip = read_csv(run.folder / "sokolovski_slip_line.csv")
     face = float(run.case.get("blade-start", "0.05")) + float(
         run.case.get("blade-thickness", "0.01")) + fields["travel"]
-    ax.plot(face + slip["distance_m"], run.depth - slip["depth_m"], "c-", lw=1.2, zorder=3,
-            label="Sokolovski slip line")
-    if fields["outline"] is not None:
-        ax.fill(fields["outline"][:, 0], fields["outline"][:, 1], color="0.5", zorder=3)
-    ax.set_aspect("equal")
-    ax.set_xlim(face - 0.03, face + 2.6 * run.depth)
-    ax.set_ylim(0, run.depth * 1.3)
+    slip_line_panel(ax, run.folder, run.depth, face, fields["outline"])
 
 
 def dem_pdr_panel(ax, run, at=0.015, threshold=0.15):
     part = run.snapshot(at)
-    slip = read_csv(run.folder / "sokolovski_slip_line.csv")
-    face = run.blade_face() + at
     dark = part["pdr"] >= threshold
     draw_disks(ax, part, np.where(dark, "0.15", "0.8"))
-    ax.plot(face + slip["distance_m"], run.depth - slip["depth_m"], "c-", lw=1.2, zorder=3,
-            label="Sokolovski slip line")
-    outline = dem_blade_outline(run, at)
-    ax.fill(outline[:, 0], outline[:, 1], color="0.5", zorder=3)
-    ax.set_aspect("equal")
-    ax.set_xlim(face - 0.03, face + 2.6 * run.depth)
-    ax.set_ylim(0, run.depth * 1.3)
+    slip_line_panel(ax, run.folder, run.depth, run.blade_face() + at, dem_blade_outline(run, at))
     ax.set_title("%s: PDR >= %.2f dark (%d of %d disks), %.0f mm of travel"
                  % (run.label(), threshold, int(dark.sum()), len(dark), at * 1000), fontsize=9)
 
@@ -834,13 +834,10 @@ def write_report(out, runs, figures, rows, heights, bands, dem_stress, args):
             lines += ["", "| run | normal stress, mean over the blade [kPa] | shear stress, mean "
                       "[kPa] | shear / normal |", "| --- | ---: | ---: | ---: |"]
             for name in ("h0.35", "polar_h0.35", "polar_h0.35_free"):
-                path = out / "runs" / name / "blade_stress.csv"
-                if not path.exists():
+                folder = out / "runs" / name
+                if not (folder / "blade_stress.csv").exists():
                     continue
-                profile = read_csv(path)
-                keep = (profile["depth_m"] >= -1e-9) & (profile["nodes"] > 0)
-                normal = profile["normal_traction_Pa"][keep].mean() / 1000
-                shear = profile["shear_traction_Pa"][keep].mean() / 1000
+                _, normal, shear = (v.mean() for v in mpm_blade_profile(folder))
                 lines.append("| %s | %.2f | %.2f | %.3f |" % (runs[name].label(), normal, shear,
                                                              shear / normal))
         if key == "drafts":

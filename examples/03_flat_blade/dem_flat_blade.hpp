@@ -534,6 +534,15 @@ int run_flat_blade(const Config& c, cosmpm::io::RunDirectory* folder, const Law&
   snapshots.push_back(c.pdr_at);
   std::sort(snapshots.begin(), snapshots.end());
   std::size_t next_snapshot = 0;
+  // The snapshots due up to `through` [m of travel], written as at `travel`.
+  auto write_snapshots = [&](double through, double travel) {
+    for (; next_snapshot < snapshots.size() && snapshots[next_snapshot] <= through;
+         ++next_snapshot) {
+      const long mm = std::lround(snapshots[next_snapshot] * 1000);
+      write_particles(folder->claim("particles_" + std::to_string(mm) + "mm.csv"), sim, layer,
+                      travel);
+    }
+  };
   double next_frame = c.frame_interval;
   io::CsvWriter forces(
       folder->claim("forces.csv"),
@@ -582,12 +591,7 @@ int run_flat_blade(const Config& c, cosmpm::io::RunDirectory* folder, const Law&
       row_steps = 0;
       next_row += row_interval;
     }
-    while (next_snapshot < snapshots.size() && travel >= snapshots[next_snapshot] - 1e-12) {
-      const long mm = std::lround(snapshots[next_snapshot] * 1000);
-      write_particles(folder->claim("particles_" + std::to_string(mm) + "mm.csv"), sim, layer,
-                      travel);
-      ++next_snapshot;
-    }
+    write_snapshots(travel + 1e-12, travel);
     if (frames && travel >= next_frame - 1e-12) {
       write_frame(travel);
       next_frame += c.frame_interval;
@@ -597,12 +601,7 @@ int run_flat_blade(const Config& c, cosmpm::io::RunDirectory* folder, const Law&
   // Rounding can end the loop a hair short of --travel (399.99 of 400 mm): the snapshots and
   // the frame due at the end of travel are still written, at the travel reached.
   const double reached = (sim.time() - *start) * c.speed;
-  while (next_snapshot < snapshots.size() && snapshots[next_snapshot] <= c.travel + 1e-12) {
-    const long mm = std::lround(snapshots[next_snapshot] * 1000);
-    write_particles(folder->claim("particles_" + std::to_string(mm) + "mm.csv"), sim, layer,
-                    reached);
-    ++next_snapshot;
-  }
+  write_snapshots(c.travel + 1e-12, reached);
   if (frames && next_frame - c.frame_interval < c.travel - 1e-9) write_frame(reached);
   const double cut_seconds =
       std::chrono::duration<double>(std::chrono::steady_clock::now() - cut_start).count();
