@@ -5,77 +5,35 @@
 
 #include <optional>
 
-#include <type_traits>
-
 #include "cosmpm/continuum/classical.hpp"
 #include "cosmpm/continuum/cosserat.hpp"
 #include "cosmpm/material/cosserat_drucker_prager.hpp"
 #include "cosmpm/material/cosserat_elastic.hpp"
 #include "cosmpm/material/linear_elastic.hpp"
 #include "cosmpm/material/mohr_coulomb.hpp"
-#include "cosmpm/particles/seeding.hpp"
 #include "cosmpm/shape.hpp"
 #include "cosmpm/simulation.hpp"
+#include "step_support.hpp"
 
 namespace {
 using namespace cosmpm;
 using Elastic = material::LinearElastic<>;
 
-// The soil models of the flat blade, with the paper's corn (Table 1).
-Elastic make_model(std::type_identity<Elastic>) {
-  return Elastic(2.76e6, 0.2);
-}
-material::MohrCoulomb<> make_model(std::type_identity<material::MohrCoulomb<>>) {
-  return material::MohrCoulomb<>(2.76e6, 0.2, 26.0, 2.0);
-}
-material::CosseratElastic<> make_model(std::type_identity<material::CosseratElastic<>>) {
-  return material::CosseratElastic<>(2.76e6, 0.2, 2.3e6, 0.01);
-}
-material::CosseratDruckerPrager<> make_model(
-    std::type_identity<material::CosseratDruckerPrager<>>) {
-  return material::CosseratDruckerPrager<>(2.76e6, 0.2, 2.3e6, 0.01, 26.0, 2.0);
-}
-
+// Corn over the grid's full width, 0.35 m deep, on a fixed floor between roller walls at x = 0
+// and 1.2 m (step_support.hpp).
 template <class Kernel, class Scheme = integrator::USL,
           class Continuum = continuum::Classical<Elastic>, class Transfer = transfer::FlipBlend>
 auto make_block(int threads, std::optional<double> flip_fraction = std::nullopt) {
   using Sim = Simulation<2, Kernel, Continuum, contact::SingleField, Scheme, Transfer>;
-  using Model = typename Continuum::model_type;
   const grid::Grid<2> grid(Vec<2>(0.0, 0.0), Vec<2>(1.2, 0.5), {120, 50});
-  SimulationParameters<2> parameters;
-  parameters.gravity = Vec<2>(0.0, -9.81);
-  parameters.threads = threads;
-  parameters.flip_fraction = flip_fraction;
-  const Continuum continuum = [] {
-    if constexpr (Continuum::is_cosserat) {
-      return Continuum(make_model(std::type_identity<Model>{}), {.micro_inertia = 12.5e-6});
-    } else {
-      return Continuum(make_model(std::type_identity<Model>{}));
-    }
-  }();
-  Sim sim(grid, continuum, parameters);
-  // Keep the particles a cell away from the side faces, where the splines' boundary
-  // treatment would otherwise differ from the interior's.
-  const auto seeding = particles::seed_box(grid, Vec<2>(0.0, 0.0), Vec<2>(1.2, 0.35), 2);
-  sim.add_particles(seeding.positions, seeding.volume, 778.0, seeding.half_width);
-  sim.boundary_conditions().set(grid::BoundaryConditions<2>::face(1, false),
-                                grid::BoundaryKind::fixed);
-  sim.boundary_conditions().set(grid::BoundaryConditions<2>::face(0, false),
-                                grid::BoundaryKind::roller);
-  sim.boundary_conditions().set(grid::BoundaryConditions<2>::face(0, true),
-                                grid::BoundaryKind::roller);
-  return sim;
+  return benchmarks::soil_block<Sim>(grid, Vec<2>(1.2, 0.35), threads, flip_fraction);
 }
 
 template <class Kernel, class Scheme = integrator::USL,
           class Continuum = continuum::Classical<Elastic>, class Transfer = transfer::FlipBlend>
 void full_step(benchmark::State& state) {
   auto sim = make_block<Kernel, Scheme, Continuum, Transfer>(static_cast<int>(state.range(0)));
-  const double dt = sim.time_step();
-  for (auto _ : state) sim.step(dt);
-  state.SetItemsProcessed(state.iterations() * sim.particles().size());
-  state.counters["particles"] = static_cast<double>(sim.particles().size());
-  state.counters["threads"] = static_cast<double>(sim.threads());
+  benchmarks::time_full_steps(state, sim);
 }
 
 // The default blend (0.99) against pure FLIP: the cost of the PIC share.
@@ -143,6 +101,18 @@ BENCHMARK(full_step<shape::CubicBSpline>)
 BENCHMARK(full_step<shape::Linear, integrator::MUSL, continuum::Classical<material::MohrCoulomb<>>>)
     ->Name("step/linear/MUSL/mohr_coulomb")
     ->Arg(1);
+// The 2D twins of the remaining 3D Mohr-Coulomb steps (step_3d.bench.cpp): two threads, and
+// the quadratic B-spline.
+BENCHMARK(full_step<shape::Linear, integrator::MUSL, continuum::Classical<material::MohrCoulomb<>>>)
+    ->Name("step/linear/MUSL/mohr_coulomb")
+    ->Arg(2)
+    ->UseRealTime();
+BENCHMARK(full_step<shape::QuadraticBSpline, integrator::MUSL,
+                    continuum::Classical<material::MohrCoulomb<>>>)
+    ->Name("step/quadratic_bspline/MUSL/mohr_coulomb")
+    ->Arg(1)
+    ->Arg(2)
+    ->UseRealTime();
 BENCHMARK(full_step<shape::Linear, integrator::MUSL,
                     continuum::Cosserat<material::CosseratDruckerPrager<>>>)
     ->Name("step/linear/MUSL/cosserat_drucker_prager")
