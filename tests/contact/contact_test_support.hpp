@@ -28,18 +28,18 @@ inline constexpr double density = 1000.0;
 // Adds particles at rest, explicitly (the store zeroes new Eigen entries since the contact
 // work; before, add_particles left the velocity uninitialised).
 template <class Sim>
-void add_at_rest(Sim& sim, const particles::Seeding<2>& seeding) {
+void add_at_rest(Sim& sim, const particles::Seeding<Sim::dim>& seeding) {
   const Index first =
       sim.add_particles(seeding.positions, seeding.volume, density, seeding.half_width);
-  auto& v = sim.particles().template get<particles::field::Velocity<2>>();
+  auto& v = sim.particles().template get<particles::field::Velocity<Sim::dim>>();
   for (Index p = first; p < sim.particles().size(); ++p) v[p].setZero();
 }
 
 template <class Sim>
-Vec<2> centre_of_mass(const Sim& sim) {
-  const auto& x = sim.particles().template get<particles::field::Position<2>>();
+Vec<Sim::dim> centre_of_mass(const Sim& sim) {
+  const auto& x = sim.particles().template get<particles::field::Position<Sim::dim>>();
   const auto& m = sim.particles().template get<particles::field::Mass>();
-  Vec<2> sum = Vec<2>::Zero();
+  Vec<Sim::dim> sum = Vec<Sim::dim>::Zero();
   double mass = 0.0;
   for (Index p = 0; p < sim.particles().size(); ++p) {
     sum += m[p] * x[p];
@@ -49,10 +49,10 @@ Vec<2> centre_of_mass(const Sim& sim) {
 }
 
 template <class Sim>
-Vec<2> momentum(const Sim& sim) {
-  const auto& v = sim.particles().template get<particles::field::Velocity<2>>();
+Vec<Sim::dim> momentum(const Sim& sim) {
+  const auto& v = sim.particles().template get<particles::field::Velocity<Sim::dim>>();
   const auto& m = sim.particles().template get<particles::field::Mass>();
-  Vec<2> sum = Vec<2>::Zero();
+  Vec<Sim::dim> sum = Vec<Sim::dim>::Zero();
   for (Index p = 0; p < sim.particles().size(); ++p) sum += m[p] * v[p];
   return sum;
 }
@@ -91,8 +91,8 @@ inline double fitted_slope(const std::vector<double>& t, const std::vector<doubl
 
 // Smallest signed distance of any particle centre from the body (negative: a centre inside).
 template <class Sim>
-double closest_particle_distance(const Sim& sim, const contact::RigidBody<2>& body) {
-  const auto& x = sim.particles().template get<particles::field::Position<2>>();
+double closest_particle_distance(const Sim& sim, const contact::RigidBody<Sim::dim>& body) {
+  const auto& x = sim.particles().template get<particles::field::Position<Sim::dim>>();
   double smallest = INFINITY;
   for (Index p = 0; p < sim.particles().size(); ++p) {
     smallest = std::min(smallest, body.signed_distance(x[p]));

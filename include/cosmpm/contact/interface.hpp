@@ -78,17 +78,20 @@ template <int Dim>
 struct ContactNode {
   Index node = 0;
   int body = 0;
-  int edge = 0;        // the body's edge the node was attributed to
-  double along = 0.0;  // position of the node's foot point along that edge, from its start
+  int edge = 0;  // the body's edge (2D) or face (3D) the node was attributed to
+  // The node's foot point on it: along the edge from its start vertex (2D); in 3D (along,
+  // across) are its (u, v) coordinates in the face's frame (ConvexPolyhedron).
+  double along = 0.0;
+  double across = 0.0;
   Vec<Dim> position = Vec<Dim>::Zero();
   Vec<Dim> normal = Vec<Dim>::Zero();   // the body's outward unit normal used at the node
-  Vec<Dim> tangent = Vec<Dim>::Zero();  // unit vector along the edge (start -> end vertex)
+  Vec<Dim> tangent = Vec<Dim>::Zero();  // unit vector along the edge (2D) or the face's u (3D)
   double mass = 0.0;
   // m (v_corrected - v_trial) / dt, less any component a boundary condition then imposed,
   // plus the push back out of the body after a friction wall (RigidContact::conditions_applied)
   Vec<Dim> force_on_material = Vec<Dim>::Zero();
   double normal_force = 0.0;  // force_on_material . normal: >= 0 when the body pushes
-  double shear_force = 0.0;   // force_on_material . tangent
+  double shear_force = 0.0;   // force_on_material . tangent (3D: the u part of the shear)
   // I (spin_corrected - spin_trial) / dt on the rotational degree of freedom (N m per m of
   // width; I: the node's rotational inertia), from a held or coupled rotation; 0 when free.
   double moment_on_material = 0.0;
@@ -102,6 +105,16 @@ struct TractionBin {
   double normal_traction = 0.0;  // pressure on the body's face (compression positive)
   double shear_traction = 0.0;   // on the body along the edge tangent
   int nodes = 0;                 // contact nodes pressing in the bin
+};
+
+// Traction the material exerts on one patch of a 3D body's face: bins of the face's (u, v)
+// frame (ConvexPolyhedron), per unit area.
+struct TractionPatch {
+  Vec<2> centre = Vec<2>::Zero();  // (u, v) in the face's frame
+  Vec<2> size = Vec<2>::Zero();
+  double normal_traction = 0.0;            // pressure on the face (compression positive)
+  Vec<2> shear_traction = Vec<2>::Zero();  // on the body along u and v
+  int nodes = 0;                           // contact nodes pressing in the patch
 };
 
 }  // namespace cosmpm::contact

@@ -28,16 +28,21 @@ struct BoundaryPoint {
   bool at_vertex = false;
 };
 
+// 2D: simple polygons (here); 3D: convex polyhedra (rigid_body_3d.hpp).
 template <int Dim>
 class RigidBody {
-  static_assert(Dim == 2, "contact::RigidBody: only 2D polygons are implemented");
+  static_assert(Dim == 2 || Dim == 3, "contact::RigidBody: 2D polygons or 3D polyhedra");
 };
 
 template <>
 class RigidBody<2> {
  public:
+  using Point = BoundaryPoint;
+  using AngularVelocity = double;
   using VelocityLaw = std::function<Vec<2>(double)>;
   using AngularVelocityLaw = std::function<double(double)>;
+  // Checkpoint values per body: the reference point and the angle.
+  static constexpr int pose_size = 3;
 
   // `relative_vertices` in order around the polygon (either orientation), relative to
   // `reference_point`, which is also the centre of rotation. The polygon must be simple.
@@ -130,7 +135,20 @@ class RigidBody<2> {
     update_world();
   }
 
+  std::vector<double> pose_values() const { return {reference_[0], reference_[1], angle_}; }
+  void set_pose_values(const double* values) { set_pose(Vec<2>(values[0], values[1]), values[2]); }
+
   // --- geometry -------------------------------------------------------------------------
+  // The contact law's names, shared with the 3D body: a polygon's faces are its edges.
+  int face_count() const { return edge_count(); }
+  Vec<2> face_normal(int e) const { return edge_normal(e); }
+  Vec<2> face_tangent(int e) const { return edge_tangent(e); }
+  BoundaryPoint closest_on_face(const Vec<2>& x, int e, bool inside) const {
+    return closest_on_edge(x, e, inside);
+  }
+  bool face_meets_open_box(int e, const Vec<2>& centre, const Vec<2>& half) const {
+    return edge_meets_open_box(e, centre, half);
+  }
   const Vec<2>& reference_point() const { return reference_; }
   double angle() const { return angle_; }  // radians, counter-clockwise from the input pose
   const std::vector<Vec<2>>& vertices() const { return world_; }

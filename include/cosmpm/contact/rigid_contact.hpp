@@ -22,6 +22,7 @@
 #include <algorithm>
 #include <array>
 #include <cmath>
+#include <limits>
 #include <string>
 #include <utility>
 #include <vector>
@@ -29,9 +30,11 @@
 #include "cosmpm/contact/concept.hpp"
 #include "cosmpm/contact/detail/contact_point.hpp"
 #include "cosmpm/contact/detail/gaps.hpp"
+#include "cosmpm/contact/detail/traction_bins.hpp"
 #include "cosmpm/contact/grid_view.hpp"
 #include "cosmpm/contact/interface.hpp"
 #include "cosmpm/contact/rigid_body.hpp"
+#include "cosmpm/contact/rigid_body_3d.hpp"
 #include "cosmpm/contact/wall_rotation.hpp"
 #include "cosmpm/core/error.hpp"
 #include "cosmpm/core/types.hpp"
@@ -41,7 +44,8 @@ namespace cosmpm::contact {
 
 template <int Dim>
 class RigidContact {
-  static_assert(Dim == 2, "contact::RigidContact: only 2D (polygonal bodies) is implemented");
+  static_assert(Dim == 2 || Dim == 3,
+                "contact::RigidContact: 2D (polygonal bodies) or 3D (convex polyhedra)");
 
  public:
   static constexpr const char* name() { return "rigid bodies, Bardenhagen Coulomb contact"; }
@@ -51,6 +55,13 @@ class RigidContact {
     if (interface.kind == Interface::Kind::coulomb) {
       require_non_negative("contact::RigidContact::add_body", "friction coefficient mu",
                            interface.friction_coefficient);
+    }
+    if (Dim == 3 && interface.rotation != Interface::Rotation::free) {
+      throw Error(std::string("contact::RigidContact<3>::add_body: the grain rotation at a body "
+                              "is ") +
+                  Interface::rotation_name(interface.rotation) +
+                  " (valid: free; the Cosserat continuum, whose rotation it holds or couples, is "
+                  "2D only)");
     }
     if (interface.rotation == Interface::Rotation::coupled) {
       require(interface.kind == Interface::Kind::coulomb,
@@ -108,7 +119,8 @@ class RigidContact {
   // cross the edge when it is axis-aligned, so each bin holds one row of nodes. bin_width = 0
   // means the cell size along the edge (|t_x| h_x + |t_y| h_y for the edge's unit tangent t).
   // Sum of traction * width over the bins = the edge's total force.
-  std::vector<TractionBin> traction_profile(int b, int edge, double bin_width = 0.0) const {
+  std::vector<TractionBin> traction_profile(int b, int edge, double bin_width = 0.0) const
+      requires(Dim == 2) {
     const auto& e = entry(b);
     require_in_range("contact::RigidContact::traction_profile", "edge", edge, 0,
                      e.body.edge_count() - 1, Bounds::closed);
@@ -116,54 +128,46 @@ class RigidContact {
     require(recorded_,
             "contact::RigidContact::traction_profile: no step has been recorded yet (call it "
             "after Simulation::step)");
-    const Vec<Dim> t = e.body.edge_tangent(edge);
-    const Vec<Dim> n = e.body.edge_normal(edge);
-    if (bin_width == 0.0)
-      bin_width = std::abs(t[0]) * cell_size_[0] + std::abs(t[1]) * cell_size_[1];
-    const double length = e.body.edge_length(edge);
-    // Bin k is centred at phase + k * width: grid nodes project onto bin centres.
-    const double phase = (origin_ - e.body.edge_start(edge)).dot(t);
-    const auto bin_of = [&](double along) {
-      return static_cast<Index>(std::floor((along - phase) / bin_width + 0.5));
-    };
-    const Index first = bin_of(0.0);
-    const Index last = bin_of(length);
-    std::vector<TractionBin> bins(static_cast<std::size_t>(last - first + 1));
-    for (std::size_t k = 0; k < bins.size(); ++k) {
-      bins[k].centre = phase + static_cast<double>(first + static_cast<Index>(k)) * bin_width;
-      bins[k].width = bin_width;
-    }
-    for (const auto& r : records_) {
-      if (r.body != b || r.edge != edge) continue;
-      const Index k = std::clamp(bin_of(r.along), first, last) - first;
-      auto& bin = bins[static_cast<std::size_t>(k)];
-      // The material pushes the body with -force_on_material.
-      bin.normal_traction += r.force_on_material.dot(n) / bin_width;
-      bin.shear_traction -= r.force_on_material.dot(t) / bin_width;
-      if (r.state != NodeState::separating) ++bin.nodes;
-    }
-    return bins;
+    return detail::edge_traction_bins(records_, e.body, b, edge, bin_width, cell_size_, origin_);
+  }
+
+  // 3D: the traction over face `face` of body b from the last step's nodal forces, in patches
+  // of the face's (u, v) frame (ConvexPolyhedron): the forces of the nodes attributed to the
+  // face, binned by their foot point and divided by the patch area. Patches are centred where
+  // grid lines cross an axis-aligned face, so each holds one node; a size of 0 means the cell
+  // size along u or v. Patches run u fastest. Sum of traction * area = the face's force.
+  std::vector<TractionPatch> traction_map(int b, int face, Vec<2> size = Vec<2>::Zero()) const
+      requires(Dim == 3) {
+    const auto& e = entry(b);
+    require_in_range("contact::RigidContact::traction_map", "face", face, 0,
+                     e.body.face_count() - 1, Bounds::closed);
+    require_non_negative("contact::RigidContact::traction_map", "patch size along u", size[0]);
+    require_non_negative("contact::RigidContact::traction_map", "patch size along v", size[1]);
+    require(recorded_,
+            "contact::RigidContact::traction_map: no step has been recorded yet (call it after "
+            "Simulation::step)");
+    return detail::face_traction_patches(records_, e.body, b, face, size, cell_size_, origin_);
   }
 
   // --- checkpoints (io/checkpoint.hpp): the bodies' poses, 3 values per body -------------
   std::vector<double> checkpoint_values() const {
     std::vector<double> values;
-    values.reserve(3 * bodies_.size());
+    values.reserve(pose_size * bodies_.size());
     for (const auto& e : bodies_) {
-      values.push_back(e.body.reference_point()[0]);
-      values.push_back(e.body.reference_point()[1]);
-      values.push_back(e.body.angle());
+      const auto pose = e.body.pose_values();
+      values.insert(values.end(), pose.begin(), pose.end());
     }
     return values;
   }
   void restore_checkpoint_values(const std::vector<double>& values) {
-    if (values.size() != 3 * bodies_.size()) {
+    if (values.size() != pose_size * bodies_.size()) {
       throw Error("contact::RigidContact::restore_checkpoint_values: " +
                   std::to_string(values.size()) + " values for " + std::to_string(bodies_.size()) +
-                  " bodies (valid: 3 per body, " + std::to_string(3 * bodies_.size()) + ")");
+                  " bodies (valid: " + std::to_string(pose_size) + " per body, " +
+                  std::to_string(pose_size * bodies_.size()) + ")");
     }
     for (std::size_t b = 0; b < bodies_.size(); ++b) {
-      bodies_[b].body.set_pose(Vec<Dim>(values[3 * b], values[3 * b + 1]), values[3 * b + 2]);
+      bodies_[b].body.set_pose_values(values.data() + pose_size * b);
     }
   }
 
@@ -232,6 +236,8 @@ class RigidContact {
   }
 
  private:
+  static constexpr std::size_t pose_size = RigidBody<Dim>::pose_size;
+
   struct Entry {
     RigidBody<Dim> body;
     Interface interface;
@@ -250,16 +256,17 @@ class RigidContact {
   static void require_on_grid(const grid::Grid<Dim>& g, const RigidBody<Dim>& body, int b) {
     const Vec<Dim> lo = g.origin();
     const Vec<Dim> hi = g.origin() + g.extent();
+    const auto point = [](const Vec<Dim>& x) {
+      std::string text = "[";
+      for (int d = 0; d < Dim; ++d) text += (d ? ", " : "") + detail::format_number(x[d]);
+      return text + "]";
+    };
     for (int d = 0; d < Dim; ++d) {
       if (body.upper_bound()[d] < lo[d] || body.lower_bound()[d] > hi[d]) {
         throw Error("contact::RigidContact: rigid body " + std::to_string(b) +
-                    " with bounding box [" + detail::format_number(body.lower_bound()[0]) + ", " +
-                    detail::format_number(body.lower_bound()[1]) + "] - [" +
-                    detail::format_number(body.upper_bound()[0]) + ", " +
-                    detail::format_number(body.upper_bound()[1]) + "] lies outside the grid box [" +
-                    detail::format_number(lo[0]) + ", " + detail::format_number(lo[1]) + "] - [" +
-                    detail::format_number(hi[0]) + ", " + detail::format_number(hi[1]) +
-                    "] (valid range: the body must overlap the grid)");
+                    " with bounding box " + point(body.lower_bound()) + " - " +
+                    point(body.upper_bound()) + " lies outside the grid box " + point(lo) + " - " +
+                    point(hi) + " (valid range: the body must overlap the grid)");
       }
     }
   }
@@ -282,7 +289,7 @@ class RigidContact {
     if (gap_check_) measure_gaps(view, body, b);
     const double mid = view.time + 0.5 * view.dt;
     const Vec<Dim> body_velocity = body.velocity(mid);
-    const double body_omega = body.angular_velocity(mid);
+    const typename RigidBody<Dim>::AngularVelocity body_omega = body.angular_velocity(mid);
     const Vec<Dim> reach = view.node_reach * g.cell_size();
     // Nodes whose support box can meet the body's bounding box.
     std::array<Index, Dim> lo{};
@@ -298,77 +305,79 @@ class RigidContact {
     const bool coupled = e.interface.rotation == Interface::Rotation::coupled;
     if (coupled) require_rotational_inertia(view, b);
     const Vec<Dim> half_cell = 0.5 * g.cell_size();
-    for (Index j = lo[1]; j <= hi[1]; ++j) {
-      for (Index i = lo[0]; i <= hi[0]; ++i) {
-        const Index n = g.node_index({i, j});
-        const double m = view.mass[n];
-        if (m <= view.empty_mass) continue;
-        const Vec<Dim> x = g.node_position(n);
-        if (!body.meets_open_box(x, reach)) continue;
-        const BoundaryPoint p = detail::contact_point(view, body, n, x, reach);
-        const Vec<Dim> v_trial = view.velocity[n];
-        const Vec<Dim> v_body = body.velocity_at(x, body_velocity, body_omega);
-        const Vec<Dim> v_rel = v_trial - v_body;
-        const double v_n = v_rel.dot(p.normal);
-        const bool approaching = v_n < 0.0 && reaches_within_step(n, v_n, view.dt, g);
-        Vec<Dim> v_new = v_trial;
-        NodeState state = NodeState::separating;
-        const double spin_trial = view.spin.empty() ? 0.0 : view.spin[static_cast<std::size_t>(n)];
-        double spin_new = spin_trial;
-        if (e.interface.kind == Interface::Kind::no_slip) {
+    grid::for_each_node_in_box(g, lo, hi, [&](Index n) {
+      const double m = view.mass[n];
+      if (m <= view.empty_mass) return;
+      const Vec<Dim> x = g.node_position(n);
+      if (!body.meets_open_box(x, reach)) return;
+      const auto p = detail::contact_point(view, body, n, x, reach);
+      const Vec<Dim> v_trial = view.velocity[n];
+      const Vec<Dim> v_body = body.velocity_at(x, body_velocity, body_omega);
+      const Vec<Dim> v_rel = v_trial - v_body;
+      const double v_n = v_rel.dot(p.normal);
+      const bool approaching = v_n < 0.0 && reaches_within_step(n, v_n, view.dt, g);
+      Vec<Dim> v_new = v_trial;
+      NodeState state = NodeState::separating;
+      const double spin_trial = view.spin.empty() ? 0.0 : view.spin[static_cast<std::size_t>(n)];
+      double spin_new = spin_trial;
+      if (e.interface.kind == Interface::Kind::no_slip) {
+        v_new = v_body;
+        state = NodeState::bonded;
+      } else if (e.interface.kind == Interface::Kind::fixed) {
+        if (body.contains(x) || straddles_surface(body, x, half_cell)) {
           v_new = v_body;
           state = NodeState::bonded;
-        } else if (e.interface.kind == Interface::Kind::fixed) {
-          if (body.contains(x) || straddles_surface(body, x, half_cell)) {
-            v_new = v_body;
-            state = NodeState::bonded;
-          }
-        } else if (approaching && coupled) {
+        }
+      } else if (approaching && coupled) {
+        if constexpr (Dim == 2) {
           const auto c = grain_wall_friction(v_rel, spin_trial - body_omega, p.normal, m,
                                              inertia_of(view, n), mu, e.interface.grain_radius);
           v_new = v_body + c.velocity;
           spin_new = body_omega + c.spin;
           state = c.state;
-        } else if (approaching) {
-          const Vec<Dim> v_t = v_rel - v_n * p.normal;
-          const double v_t_norm = v_t.norm();
-          const double limit = mu * (-v_n);
-          if (v_t_norm <= limit) {
-            v_new = v_body;
-            state = NodeState::stick;
-          } else {
-            v_new = v_body + (1.0 - limit / v_t_norm) * v_t;
-            state = NodeState::slip;
-          }
         }
-        view.velocity[n] = v_new;
+      } else if (approaching) {
+        const Vec<Dim> v_t = v_rel - v_n * p.normal;
+        const double v_t_norm = v_t.norm();
+        const double limit = mu * (-v_n);
+        if (v_t_norm <= limit) {
+          v_new = v_body;
+          state = NodeState::stick;
+        } else {
+          v_new = v_body + (1.0 - limit / v_t_norm) * v_t;
+          state = NodeState::slip;
+        }
+      }
+      view.velocity[n] = v_new;
+      if constexpr (Dim == 2) {
         if (state != NodeState::separating && held && straddles_surface(body, x, half_cell)) {
           spin_new = body_omega;
         }
-        if (!view.spin.empty()) view.spin[static_cast<std::size_t>(n)] = spin_new;
-        examined_.push_back(
-            {n, record ? static_cast<Index>(records_.size()) : Index{-1}, m, p.normal, v_body});
-        if (!record) continue;
-        ContactNode<Dim> r;
-        r.node = n;
-        r.body = b;
-        r.edge = p.edge;
-        r.along = p.along;
-        r.position = x;
-        r.normal = p.normal;
-        r.tangent = body.edge_tangent(p.edge);
-        r.mass = m;
-        r.force_on_material = m * (v_new - v_trial) / view.dt;
-        r.normal_force = r.force_on_material.dot(r.normal);
-        r.shear_force = r.force_on_material.dot(r.tangent);
-        if (spin_new != spin_trial) {
-          r.moment_on_material = inertia_of(view, n) * (spin_new - spin_trial) / view.dt;
-        }
-        r.state = state;
-        e.force_on_material += r.force_on_material;
-        records_.push_back(r);
       }
-    }
+      if (!view.spin.empty()) view.spin[static_cast<std::size_t>(n)] = spin_new;
+      examined_.push_back(
+          {n, record ? static_cast<Index>(records_.size()) : Index{-1}, m, p.normal, v_body});
+      if (!record) return;
+      ContactNode<Dim> r;
+      r.node = n;
+      r.body = b;
+      r.edge = detail::face_of(p);
+      r.along = detail::face_coordinates(p)[0];
+      r.across = detail::face_coordinates(p)[1];
+      r.position = x;
+      r.normal = p.normal;
+      r.tangent = body.face_tangent(r.edge);
+      r.mass = m;
+      r.force_on_material = m * (v_new - v_trial) / view.dt;
+      r.normal_force = r.force_on_material.dot(r.normal);
+      r.shear_force = r.force_on_material.dot(r.tangent);
+      if (spin_new != spin_trial) {
+        r.moment_on_material = inertia_of(view, n) * (spin_new - spin_trial) / view.dt;
+      }
+      r.state = state;
+      e.force_on_material += r.force_on_material;
+      records_.push_back(r);
+    });
   }
 
   // A node the last correction looked at, kept for conditions_applied.
@@ -393,5 +402,6 @@ class RigidContact {
 };
 
 static_assert(ContactLaw<RigidContact<2>, 2>);
+static_assert(ContactLaw<RigidContact<3>, 3>);
 
 }  // namespace cosmpm::contact

@@ -5,6 +5,7 @@
 #include <array>
 #include <cmath>
 #include <string>
+#include <type_traits>
 
 #include "cosmpm/core/error.hpp"
 #include "cosmpm/core/types.hpp"
@@ -92,5 +93,27 @@ class Grid {
   std::array<Index, Dim> nodes_{};
   Index node_total_ = 0;
 };
+
+// Calls f(node index) for the nodes lo[d] <= ijk[d] <= hi[d] of every axis, x fastest (the
+// grid's own numbering order, so sums over the nodes do not depend on the dimension's code).
+template <int Dim, class F>
+void for_each_node_in_box(const Grid<Dim>& grid,
+                          const std::type_identity_t<std::array<Index, Dim>>& lo,
+                          const std::type_identity_t<std::array<Index, Dim>>& hi, F&& f) {
+  for (int d = 0; d < Dim; ++d) {
+    if (hi[d] < lo[d]) return;
+  }
+  std::array<Index, Dim> ijk = lo;
+  while (true) {
+    f(grid.node_index(ijk));
+    int d = 0;
+    while (d < Dim && ijk[d] == hi[d]) {
+      ijk[d] = lo[d];
+      ++d;
+    }
+    if (d == Dim) return;
+    ++ijk[d];
+  }
+}
 
 }  // namespace cosmpm::grid

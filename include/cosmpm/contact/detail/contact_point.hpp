@@ -6,6 +6,7 @@
 
 #include "cosmpm/contact/grid_view.hpp"
 #include "cosmpm/contact/rigid_body.hpp"
+#include "cosmpm/contact/rigid_body_3d.hpp"
 #include "cosmpm/core/types.hpp"
 
 namespace cosmpm::detail {
@@ -29,25 +30,40 @@ Vec<Dim> mass_gradient(const contact::GridView<Dim>& view, Index n) {
   return g;
 }
 
+// The face a boundary point lies on, and its coordinates there (along, across).
+inline int face_of(const contact::BoundaryPoint& p) {
+  return p.edge;
+}
+inline int face_of(const contact::FacePoint& p) {
+  return p.face;
+}
+inline Vec<2> face_coordinates(const contact::BoundaryPoint& p) {
+  return Vec<2>(p.along, 0.0);
+}
+inline Vec<2> face_coordinates(const contact::FacePoint& p) {
+  return p.on_face;
+}
+
 // The boundary point whose normal the node uses: the closest one, unless the material lies
 // on another side (a node inside or behind a body thinner than the support sees the face
 // the material touches, not the nearest one); then the closest of the edges within the
 // node's support that face the material.
 template <int Dim>
-contact::BoundaryPoint contact_point(const contact::GridView<Dim>& view,
-                                     const contact::RigidBody<Dim>& body, Index n,
-                                     const Vec<Dim>& x, const Vec<Dim>& reach) {
-  const contact::BoundaryPoint closest = body.closest(x);
+typename contact::RigidBody<Dim>::Point contact_point(const contact::GridView<Dim>& view,
+                                                      const contact::RigidBody<Dim>& body, Index n,
+                                                      const Vec<Dim>& x, const Vec<Dim>& reach) {
+  using Point = typename contact::RigidBody<Dim>::Point;
+  const Point closest = body.closest(x);
   const Vec<Dim> g = mass_gradient(view, n);
   if (closest.normal.dot(g) >= 0.0) return closest;
   const bool inside = closest.signed_distance < 0.0;
-  contact::BoundaryPoint best = closest;
+  Point best = closest;
   double best_distance = std::numeric_limits<double>::infinity();
-  for (int e = 0; e < body.edge_count(); ++e) {
-    if (!body.edge_meets_open_box(e, x, reach)) continue;
-    const contact::BoundaryPoint p = body.closest_on_edge(x, e, inside);
+  for (int e = 0; e < body.face_count(); ++e) {
+    if (!body.face_meets_open_box(e, x, reach)) continue;
+    const Point p = body.closest_on_face(x, e, inside);
     // Behind a thin body the facing edge lies beyond it: its face normal, not the offset.
-    const Vec<Dim> normal = body.edge_normal(e);
+    const Vec<Dim> normal = body.face_normal(e);
     if (normal.dot(g) <= 0.0) continue;
     const double distance = std::abs(p.signed_distance);
     if (distance < best_distance) {

@@ -10,6 +10,7 @@
 
 #include "cosmpm/contact/grid_view.hpp"
 #include "cosmpm/contact/rigid_body.hpp"
+#include "cosmpm/contact/rigid_body_3d.hpp"
 #include "cosmpm/core/error.hpp"
 #include "cosmpm/core/types.hpp"
 
@@ -42,7 +43,7 @@ void smallest_gaps(const contact::GridView<Dim>& view, const contact::RigidBody<
     // which this over-counts for the other kernels, on the side of more contact).
     const Vec<Dim> support = reach + extent;
     if (!body.meets_open_box(x, support + reach)) continue;  // none of its nodes touches
-    const contact::BoundaryPoint closest = body.closest(x);
+    const auto closest = body.closest(x);
     double gap = closest.signed_distance;
     for (int d = 0; d < Dim; ++d) gap -= std::abs(closest.normal[d]) * extent[d];
     // The nodes whose support holds the particle: |x_i - x| < support per axis.
@@ -54,12 +55,10 @@ void smallest_gaps(const contact::GridView<Dim>& view, const contact::RigidBody<
       lo[d] = std::max<Index>(0, static_cast<Index>(std::floor(cell - cells)) + 1);
       hi[d] = std::min<Index>(g.cells(d), static_cast<Index>(std::ceil(cell + cells)) - 1);
     }
-    for (Index j = lo[1]; j <= hi[1]; ++j) {
-      for (Index i = lo[0]; i <= hi[0]; ++i) {
-        double& node_gap = gaps[static_cast<std::size_t>(g.node_index({i, j}))];
-        node_gap = std::min(node_gap, gap);
-      }
-    }
+    grid::for_each_node_in_box(g, lo, hi, [&](Index node) {
+      double& node_gap = gaps[static_cast<std::size_t>(node)];
+      node_gap = std::min(node_gap, gap);
+    });
   }
 }
 
