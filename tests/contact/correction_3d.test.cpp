@@ -92,6 +92,29 @@ TEST_CASE("correction 3D: relative to a body turning about a horizontal axis") {
   CHECK(turning.correct(Vec<3>(1.0, 0.5, -1.0)).isApprox(Vec<3>(keep, 0.5 * keep, 0.0)));
 }
 
+TEST_CASE("correction 3D: a wall's imposed component takes no part in the slip") {
+  // The node on the floor also lies on a grid face x = const that will impose v_x (view.held,
+  // bit 0). v = (1, 0.5, -1): the slip is (0, 0.5) alone, 0.5 <= mu |v_n| = 0.5: stick, so
+  // v_y = 0 and v_x is left to the wall (1 here). Without the wall: slip (1, 0.5), |v_t| =
+  // 1.118 > 0.5 -> v_y = 0.5 (1 - 0.5 / 1.118) = 0.276 (the first case).
+  OneNode3 one(contact::Interface::coulomb(0.5), Vec<3>::Zero());
+  std::vector<unsigned char> held(one.mass.size(), 0);
+  held[static_cast<std::size_t>(one.node)] = 1u;
+  one.velocity[static_cast<std::size_t>(one.node)] = Vec<3>(1.0, 0.5, -1.0);
+  contact::GridView<3> view{
+      one.grid, one.mass, one.velocity, 1e-12, 0.1, 0.0, contact::Phase::end_velocity};
+  view.held = held;
+  one.law.correct(view);
+  CHECK(one.velocity[static_cast<std::size_t>(one.node)].isApprox(Vec<3>(1.0, 0.0, 0.0)));
+  CHECK(one.law.contact_nodes()[0].state == contact::NodeState::stick);
+  // A wall along the normal (z held) leaves the correction to conditions_applied.
+  held[static_cast<std::size_t>(one.node)] = 4u;
+  one.velocity[static_cast<std::size_t>(one.node)] = Vec<3>(1.0, 0.5, -1.0);
+  one.law.correct(view);
+  const double keep = 1.0 - 0.5 / std::sqrt(1.25);
+  CHECK(one.velocity[static_cast<std::size_t>(one.node)].isApprox(Vec<3>(keep, 0.5 * keep, 0)));
+}
+
 TEST_CASE("correction 3D: the traction map of a face sums to the body's force") {
   OneNode3 one(contact::Interface::coulomb(0.5), Vec<3>::Zero());
   one.correct(Vec<3>(1.0, 0.5, -1.0));

@@ -37,6 +37,9 @@ struct GridView {
   // condition imposed velocity component d kinematically (grid::BoundaryConditions::apply);
   // empty in the correction itself.
   std::span<const unsigned char> imposed = {};
+  // In the correction itself: per node, the components the face conditions will impose on
+  // this field (the same bits, found by applying them to a copy of it); empty if unknown.
+  std::span<const unsigned char> held = {};
   // The particles where the field was mapped from (the engine's positions at the start of the
   // step; MUSL's remapped phase: at its end) and their half-widths in cell units, for laws
   // that look at the material's own geometry (RigidContact's gap check).

@@ -65,21 +65,9 @@ class RigidBody<3> {
     }
     Vec<2> mean = Vec<2>::Zero();
     for (const auto& p : polygon_xz) mean += p / static_cast<double>(n);
-    const double half = 0.5 * (y_upper - y_lower);
-    std::vector<Vec<3>> vertices;
-    for (const auto& p : polygon_xz) vertices.emplace_back(p[0] - mean[0], -half, p[1] - mean[1]);
-    for (const auto& p : polygon_xz) vertices.emplace_back(p[0] - mean[0], half, p[1] - mean[1]);
-    std::vector<std::vector<int>> faces;
-    for (int k = 0; k < n; ++k) faces.push_back({k, (k + 1) % n, n + (k + 1) % n, n + k});
-    std::vector<int> lower_end;
-    std::vector<int> upper_end;
-    for (int k = 0; k < n; ++k) {
-      lower_end.push_back(k);
-      upper_end.push_back(n + k);
-    }
-    faces.push_back(lower_end);
-    faces.push_back(upper_end);
-    return RigidBody(std::move(vertices), std::move(faces),
+    std::vector<Vec<2>> relative;
+    for (const auto& p : polygon_xz) relative.push_back(p - mean);
+    return extrusion(relative, 0.5 * (y_upper - y_lower),
                      Vec<3>(mean[0], 0.5 * (y_lower + y_upper), mean[1]));
   }
 
@@ -95,9 +83,12 @@ class RigidBody<3> {
                     " along axis " + std::to_string(d) + " (valid range (lower, inf))");
       }
     }
-    return extruded_xz({Vec<2>(lower[0], lower[2]), Vec<2>(upper[0], lower[2]),
-                        Vec<2>(upper[0], upper[2]), Vec<2>(lower[0], upper[2])},
-                       lower[1], upper[1]);
+    // Vertices at centre +- half, as RigidBody<2>::box: the same faces to the last bit.
+    const Vec<3> centre = 0.5 * (lower + upper);
+    const Vec<3> half = 0.5 * (upper - lower);
+    return extrusion({Vec<2>(-half[0], -half[2]), Vec<2>(half[0], -half[2]),
+                      Vec<2>(half[0], half[2]), Vec<2>(-half[0], half[2])},
+                     half[1], centre);
   }
 
   // --- prescribed motion ----------------------------------------------------------------
@@ -196,6 +187,26 @@ class RigidBody<3> {
   }
 
  private:
+  // The polygon (x, z relative to the reference point) extruded over y = +-half_width about it.
+  static RigidBody extrusion(const std::vector<Vec<2>>& relative, double half_width,
+                             const Vec<3>& reference) {
+    const auto n = static_cast<int>(relative.size());
+    std::vector<Vec<3>> vertices;
+    for (const auto& p : relative) vertices.emplace_back(p[0], -half_width, p[1]);
+    for (const auto& p : relative) vertices.emplace_back(p[0], half_width, p[1]);
+    std::vector<std::vector<int>> faces;
+    for (int k = 0; k < n; ++k) faces.push_back({k, (k + 1) % n, n + (k + 1) % n, n + k});
+    std::vector<int> lower_end;
+    std::vector<int> upper_end;
+    for (int k = 0; k < n; ++k) {
+      lower_end.push_back(k);
+      upper_end.push_back(n + k);
+    }
+    faces.push_back(lower_end);
+    faces.push_back(upper_end);
+    return RigidBody(std::move(vertices), std::move(faces), reference);
+  }
+
   static Vec<3> checked(const Vec<3>& value, const char* what, double time) {
     if (!value.allFinite()) {
       throw Error(std::string("contact::RigidBody<3>: the ") + what +

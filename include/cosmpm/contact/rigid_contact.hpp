@@ -337,7 +337,16 @@ class RigidContact {
           state = c.state;
         }
       } else if (approaching) {
-        const Vec<Dim> v_t = v_rel - v_n * p.normal;
+        // A component a face condition will impose (the body sliding along a grid wall) takes
+        // no part in the slip, if a free tangential direction remains: the wall sets it, and
+        // the limit mu |v_n| belongs to the slip it leaves (a 3D blade's face meeting a glass
+        // wall). With a single tangential direction (2D) nothing changes.
+        const unsigned walled = walled_components(view, n, p.normal);
+        Vec<Dim> slip = v_rel;
+        for (int d = 0; d < Dim; ++d) {
+          if ((walled >> d) & 1u) slip[d] = 0.0;
+        }
+        const Vec<Dim> v_t = slip - v_n * p.normal;
         const double v_t_norm = v_t.norm();
         const double limit = mu * (-v_n);
         if (v_t_norm <= limit) {
@@ -346,6 +355,9 @@ class RigidContact {
         } else {
           v_new = v_body + (1.0 - limit / v_t_norm) * v_t;
           state = NodeState::slip;
+        }
+        for (int d = 0; d < Dim; ++d) {
+          if ((walled >> d) & 1u) v_new[d] = v_trial[d];
         }
       }
       view.velocity[n] = v_new;
@@ -378,6 +390,23 @@ class RigidContact {
       e.force_on_material += r.force_on_material;
       records_.push_back(r);
     });
+  }
+
+  // The components view.held marks at node n, if the body's normal has none of them and at
+  // least one tangential direction stays free; else none.
+  static unsigned walled_components(const GridView<Dim>& view, Index n, const Vec<Dim>& normal) {
+    if (view.held.empty()) return 0u;
+    const unsigned held = view.held[static_cast<std::size_t>(n)];
+    if (held == 0u) return 0u;
+    int free = 0;
+    for (int d = 0; d < Dim; ++d) {
+      if (((held >> d) & 1u) == 0u) {
+        ++free;
+      } else if (std::abs(normal[d]) > 1e-12) {
+        return 0u;  // the wall holds part of the normal: conditions_applied reconciles it
+      }
+    }
+    return free >= 2 ? held : 0u;  // the normal's component and a tangential one
   }
 
   // A node the last correction looked at, kept for conditions_applied.

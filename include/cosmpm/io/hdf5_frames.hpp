@@ -14,7 +14,8 @@
 //   /values/<name>    one value per frame given by the driver (blade travel, ...), shown as
 //                     ParaView field data
 //   /bodies/<name>/   the contact law's rigid bodies, if any: vertices (V x 3), velocity and
-//                     force_on_material (1 x 3 each, one polygon cell)
+//                     force_on_material (1 x 3 each, one polygon cell; 3D: F x 3, the body's
+//                     value on each of its F faces, which the XDMF index lists)
 //   /grid/            with FrameOptions::grid_fields: node position, mass, velocity
 // Format version 1 (before cosmpm 0.1.0's output rework) kept fields at the root with
 // N x 2 vectors and N x 4 stresses; such frames still open in ParaView's legacy reader but

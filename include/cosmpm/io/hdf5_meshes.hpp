@@ -86,8 +86,9 @@ inline std::string body_name(const std::vector<std::string>& names, int b) {
   return k < names.size() ? names[k] : "body_" + std::to_string(b);
 }
 
-// Each rigid body of the simulation's contact law as one polygon cell with its velocity and
-// the force it applied to the material in the last step.
+// Each rigid body of the simulation's contact law with its velocity and the force it applied
+// to the material in the last step: a 2D body as one polygon cell, a 3D body as its faces
+// (one polygon cell each, the body's values repeated on every face).
 template <class Sim>
 void put_bodies(Hdf5File& file, XdmfFrame& frame, const Sim& sim,
                 const std::vector<std::string>& names) {
@@ -107,17 +108,32 @@ void put_bodies(Hdf5File& file, XdmfFrame& frame, const Sim& sim,
     XdmfMesh mesh;
     mesh.name = body_name(names, b);
     mesh.topology = XdmfMesh::Topology::polygon;
+    constexpr int dim = std::remove_cvref_t<decltype(sim.grid())>::dim;
+    if constexpr (dim == 3) {
+      const auto& shape = contact.body(b).shape();
+      mesh.topology = XdmfMesh::Topology::polygons;
+      for (int f = 0; f < shape.face_count(); ++f) {
+        const auto& loop = shape.face_vertices(f);
+        mesh.polygons.emplace_back(loop.begin(), loop.end());
+      }
+    }
     mesh.points = static_cast<Index>(vertices.size());
     mesh.geometry_dataset = group + "/vertices";
     file.write(mesh.geometry_dataset, xyz.data(), {static_cast<hsize_t>(vertices.size()), 3});
     detail::describe(file, mesh.geometry_dataset, "m", vector_components,
-                     "outline of the rigid body, in order around it");
+                     dim == 2 ? "outline of the rigid body, in order around it"
+                              : "vertices of the rigid body (its faces: the topology)");
     auto cell_vector = [&](const std::string& label, const auto& v, const std::string& units,
                            const std::string& description) {
-      double row[3] = {0.0, 0.0, 0.0};
-      for (Index d = 0; d < static_cast<Index>(v.size()) && d < 3; ++d) row[d] = v[d];
+      const auto cells = static_cast<std::size_t>(mesh.cells());
+      std::vector<double> rows(3 * cells, 0.0);
+      for (std::size_t c = 0; c < cells; ++c) {
+        for (Index d = 0; d < static_cast<Index>(v.size()) && d < 3; ++d) {
+          rows[3 * c + static_cast<std::size_t>(d)] = v[d];
+        }
+      }
       const std::string dataset = group + "/" + label;
-      file.write(dataset, row, {1, 3});
+      file.write(dataset, rows.data(), {static_cast<hsize_t>(cells), 3});
       detail::describe(file, dataset, units, vector_components, description);
       XdmfAttribute attribute;
       attribute.name = label;
@@ -126,7 +142,6 @@ void put_bodies(Hdf5File& file, XdmfFrame& frame, const Sim& sim,
       attribute.center = XdmfAttribute::Center::cell;
       mesh.attributes.push_back(attribute);
     };
-    constexpr int dim = std::remove_cvref_t<decltype(sim.grid())>::dim;
     cell_vector("velocity", contact.body(b).velocity(sim.time()), "m/s",
                 "velocity of the body's reference point");
     cell_vector("force_on_material", contact.force_on_material(b), dim == 2 ? "N/m" : "N",

@@ -36,15 +36,22 @@ struct XdmfAttribute {
   XdmfNumber number = XdmfNumber::float64;
 };
 
-// A cloud of points (particles, grid nodes) or one polygon (a rigid body's outline).
+// A cloud of points (particles, grid nodes), one polygon (a 2D rigid body's outline) or
+// polygons sharing points (a 3D rigid body's faces, XDMF Mixed topology of Polygon cells).
 struct XdmfMesh {
-  enum class Topology { polyvertex, polygon };
+  enum class Topology { polyvertex, polygon, polygons };
   std::string name;
   Topology topology = Topology::polyvertex;
   Index points = 0;
   std::string geometry_dataset;      // points x 3 doubles
   std::string connectivity_dataset;  // polyvertex: points int32 ids 0 .. points - 1
   std::vector<XdmfAttribute> attributes;
+  std::vector<std::vector<Index>> polygons;  // Topology::polygons: each cell's point ids
+  Index cells() const {
+    return topology == Topology::polyvertex ? points
+           : topology == Topology::polygons ? static_cast<Index>(polygons.size())
+                                            : 1;
+  }
 };
 
 struct XdmfFrame {
@@ -103,7 +110,9 @@ inline void xdmf_attribute(std::ostream& out, const std::string& indent, const s
   const char* center = attribute.center == Center::node   ? "Node"
                        : attribute.center == Center::cell ? "Cell"
                                                           : "Grid";
-  const Index rows = attribute.center == Center::node ? mesh.points : 1;
+  const Index rows = attribute.center == Center::node   ? mesh.points
+                     : attribute.center == Center::cell ? mesh.cells()
+                                                        : 1;
   std::string dimensions = std::to_string(rows);
   if (attribute.kind == Kind::vector) dimensions += " 3";
   if (attribute.kind == Kind::tensor) dimensions += " 9";
@@ -124,6 +133,19 @@ inline void xdmf_mesh(std::ostream& out, const std::string& indent, const XdmfFr
         << "\" NodesPerElement=\"1\">\n";
     xdmf_heavy_item(out, inner + "  ", frame.file, mesh.connectivity_dataset, n + " 1",
                     XdmfNumber::int32);
+  } else if (mesh.topology == XdmfMesh::Topology::polygons) {
+    // Mixed topology: per cell the Polygon type (3), its point count, its point ids.
+    std::ostringstream ids;
+    Index length = 0;
+    for (const auto& cell : mesh.polygons) {
+      ids << (length == 0 ? "" : " ") << 3 << ' ' << cell.size();
+      for (const Index k : cell) ids << ' ' << k;
+      length += 2 + static_cast<Index>(cell.size());
+    }
+    out << inner << "<Topology TopologyType=\"Mixed\" NumberOfElements=\"" << mesh.cells()
+        << "\">\n";
+    out << inner << "  <DataItem Dimensions=\"" << length << "\" "
+        << xdmf_number_type(XdmfNumber::int32) << " Format=\"XML\">" << ids.str() << "</DataItem>\n";
   } else {
     out << inner << "<Topology TopologyType=\"Polygon\" NumberOfElements=\"1\" NodesPerElement=\""
         << n << "\">\n";

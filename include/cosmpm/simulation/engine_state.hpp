@@ -79,6 +79,8 @@ struct EngineState {
   std::vector<rates_type> particle_rates;  // MUSL/USF: between rates and stress update
   std::vector<double> cell_sums;           // antilocking::FBar: per-cell volume sums
   std::vector<unsigned char> imposed;      // components the face conditions imposed, per node
+  std::vector<unsigned char> held;         // ... would impose on the field before contact
+  std::vector<Vec<Dim>> held_scratch;      // the field the prediction of `held` works on
 
   const model_type& model() const { return continuum.model(); }
   double empty_node_mass() const {

@@ -55,6 +55,13 @@ void correct_and_apply_conditions(State& s, std::vector<Vec<State::dim>>& veloci
   constexpr int Dim = State::dim;
   if constexpr (contact::CorrectsVelocities<Contact, Dim>) {
     auto view = contact_view(s, velocity, spin, dt, phase);
+    if constexpr (contact::ReconcilesConditions<Contact, Dim>) {
+      // What the face conditions will impose, so friction acts on the slip they leave.
+      s.held.assign(static_cast<std::size_t>(s.grid.node_count()), 0);
+      s.held_scratch = velocity;
+      grid::apply_boundary_conditions(s.boundary, s.grid, s.held_scratch, &s.held);
+      view.held = s.held;
+    }
     s.contact.correct(view);
   }
   if constexpr (contact::ReconcilesConditions<Contact, Dim>) {
