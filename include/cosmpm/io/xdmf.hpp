@@ -145,7 +145,8 @@ inline void xdmf_mesh(std::ostream& out, const std::string& indent, const XdmfFr
     out << inner << "<Topology TopologyType=\"Mixed\" NumberOfElements=\"" << mesh.cells()
         << "\">\n";
     out << inner << "  <DataItem Dimensions=\"" << length << "\" "
-        << xdmf_number_type(XdmfNumber::int32) << " Format=\"XML\">" << ids.str() << "</DataItem>\n";
+        << xdmf_number_type(XdmfNumber::int32) << " Format=\"XML\">" << ids.str()
+        << "</DataItem>\n";
   } else {
     out << inner << "<Topology TopologyType=\"Polygon\" NumberOfElements=\"1\" NodesPerElement=\""
         << n << "\">\n";
