@@ -75,6 +75,14 @@ xvfb-run -a -s "-screen 0 1280x1024x24" pvbatch --force-offscreen-rendering \
 ./build/release/examples/example_04_granular_collapse --cell 0.005 --end-time 0.05 \
   --transfer apic --wall 0.2 --frames false --out "$smoke/04w" || [ $? -eq 2 ]
 /usr/bin/python3 scripts/plot_granular_collapse.py "$smoke/04"
+# The 3D flat blade on a small rig: its frames (particles and the blade's faces) in both readers.
+./build/release/examples/example_06_flat_blade_3d --depth 0.1 --width 0.04 --rig-length 0.4 \
+  --rig-height 0.3 --blade-height 0.15 --glass-friction 10 --settle-time 0.02 --travel 0.003 \
+  --average-from 0.001 --average-to 0.003 --profile-at 0.002 --frame-interval 0.0015 \
+  --out "$smoke/06"
+scripts/check_paraview.sh "$smoke/paraview06" "$smoke/06/frames/flat_blade_3d.xdmf" \
+  "$smoke/06/frames/flat_blade_3d_bodies.xdmf"
+/usr/bin/python3 scripts/plot_flat_blade_3d.py "$smoke/06" --out "$smoke/06/flat_blade_3d.png"
 # The paper's figures on coarse meshes (DEM with coarse grains): every run of the set, every
 # plot and the report.
 scripts/reproduce_paper.sh --quick --out "$smoke/paper"

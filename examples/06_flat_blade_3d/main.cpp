@@ -302,6 +302,7 @@ int run(const Case& c, const io::Options& options) {
           "\nwidth_m = " + detail::format_number(c.width) +
           "\nmodelled_width_m = " + detail::format_number(modelled) +
           "\ntravel_reached_m = " + detail::format_number(travel) +
+          "\nblade_face_end_m = " + detail::format_number(face_x + travel) +
           "\ndraft_N_per_m = " + detail::format_number(draft_per_m) +
           "\nvertical_N_per_m = " + detail::format_number(mean[2] / modelled) +
           "\ndraft_N_rig = " + detail::format_number(mean[0] * rig_factor) +
