@@ -93,7 +93,7 @@ TEST_CASE("plane strain slab 3D: the blade's force per width is the 2D force") {
     mean_slab += slab[i].cwiseAbs() / static_cast<double>(slab.size());
   }
   MESSAGE("mean |force| 2D (" << mean_flat.transpose() << ") N/m, slab (" << mean_slab.transpose()
-                            << ") N/m; first 50 steps differ by at most " << early << " N/m");
+                              << ") N/m; first 50 steps differ by at most " << early << " N/m");
   // Step for step to round-off while no contact decision (stick or slip, which face) falls
   // on a tie; then the 2D and 3D geometry's different rounding may tip one (a few per mille
   // in single steps, measured), which the run's mean does not feel.
