@@ -11,7 +11,6 @@ One PNG (default: RUN_DIR/flat_blade_3d.png of the first run), four panels:
   the normal stress on the blade against depth, at mid-width and at the glass.
 """
 import argparse
-import csv
 import pathlib
 
 import matplotlib
@@ -20,14 +19,7 @@ matplotlib.use("Agg")
 import matplotlib.pyplot as plt  # noqa: E402
 import numpy as np  # noqa: E402
 
-
-def read_csv(path):
-    with open(path, newline="") as handle:
-        reader = csv.reader(handle)
-        header = next(reader)
-        rows = [[float(v) for v in row] for row in reader if row]
-    data = np.array(rows) if rows else np.zeros((0, len(header)))
-    return {name: data[:, i] for i, name in enumerate(header)}
+from plot_flat_blade import read_csv  # noqa: E402
 
 
 def read_summary(run):

@@ -28,6 +28,20 @@ struct BoundaryPoint {
   bool at_vertex = false;
 };
 
+// The corners of an axis-aligned box: finite, upper above lower along every axis.
+template <int Dim>
+void require_box_corners(const char* where, const Vec<Dim>& lower, const Vec<Dim>& upper) {
+  for (int d = 0; d < Dim; ++d) {
+    require(std::isfinite(lower[d]) && std::isfinite(upper[d]),
+            std::string(where) + ": corners must be finite");
+    if (!(upper[d] > lower[d])) {
+      throw Error(std::string(where) + ": upper corner " + detail::format_number(upper[d]) +
+                  " must exceed lower corner " + detail::format_number(lower[d]) + " along axis " +
+                  std::to_string(d) + " (valid range (lower, inf))");
+    }
+  }
+}
+
 // 2D: simple polygons (here); 3D: convex polyhedra (rigid_body_3d.hpp).
 template <int Dim>
 class RigidBody {
@@ -56,15 +70,7 @@ class RigidBody<2> {
   // clockwise from the lower-left corner): 0 bottom (normal -y), 1 right (+x), 2 top (+y),
   // 3 left (-x).
   static RigidBody box(const Vec<2>& lower, const Vec<2>& upper) {
-    for (int d = 0; d < 2; ++d) {
-      require(std::isfinite(lower[d]) && std::isfinite(upper[d]),
-              "contact::RigidBody::box: corners must be finite");
-      if (!(upper[d] > lower[d])) {
-        throw Error("contact::RigidBody::box: upper corner " + detail::format_number(upper[d]) +
-                    " must exceed lower corner " + detail::format_number(lower[d]) +
-                    " along axis " + std::to_string(d) + " (valid range (lower, inf))");
-      }
-    }
+    require_box_corners("contact::RigidBody::box", lower, upper);
     const Vec<2> centre = 0.5 * (lower + upper);
     const Vec<2> half = 0.5 * (upper - lower);
     return RigidBody({Vec<2>(-half[0], -half[1]), Vec<2>(half[0], -half[1]),

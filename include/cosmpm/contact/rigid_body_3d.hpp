@@ -74,15 +74,7 @@ class RigidBody<3> {
   // The axis-aligned box [lower, upper]: the extruded rectangle, so faces 0-3 are the 2D
   // box's edges (0 bottom -z, 1 +x, 2 top +z, 3 -x), then 4 (-y) and 5 (+y).
   static RigidBody box(const Vec<3>& lower, const Vec<3>& upper) {
-    for (int d = 0; d < 3; ++d) {
-      require(std::isfinite(lower[d]) && std::isfinite(upper[d]),
-              "contact::RigidBody<3>::box: corners must be finite");
-      if (!(upper[d] > lower[d])) {
-        throw Error("contact::RigidBody<3>::box: upper corner " + detail::format_number(upper[d]) +
-                    " must exceed lower corner " + detail::format_number(lower[d]) +
-                    " along axis " + std::to_string(d) + " (valid range (lower, inf))");
-      }
-    }
+    require_box_corners("contact::RigidBody<3>::box", lower, upper);
     // Vertices at centre +- half, as RigidBody<2>::box: the same faces to the last bit.
     const Vec<3> centre = 0.5 * (lower + upper);
     const Vec<3> half = 0.5 * (upper - lower);
