@@ -81,7 +81,7 @@ def main():
             stress.plot(traction["normal_traction_Pa"][pick] / 1e3, traction["depth_m"][pick] * 1e3,
                         colour + style, label="%s, %s" % (label, where))
     drafts.set(xlabel="blade travel [mm]", ylabel="draft per metre of width [N/m]",
-               title="Draft (15-35 mm average in the legend)")
+               title="Draft (legend: average over the run's window, 15-35 mm by default)")
     across.set(xlabel="y / modelled width (0: symmetry plane, 1: glass)",
                ylabel="normal force on the blade [N/m]", title="Blade force across the rig")
     surface.set(xlabel="x [m]", ylabel="free surface [mm]",
