@@ -29,6 +29,7 @@
 
 #include "cosmpm/contact/concept.hpp"
 #include "cosmpm/contact/detail/contact_point.hpp"
+#include "cosmpm/contact/detail/coulomb_slip.hpp"
 #include "cosmpm/contact/detail/gaps.hpp"
 #include "cosmpm/contact/detail/traction_bins.hpp"
 #include "cosmpm/contact/grid_view.hpp"
@@ -337,28 +338,10 @@ class RigidContact {
           state = c.state;
         }
       } else if (approaching) {
-        // A component a face condition will impose (the body sliding along a grid wall) takes
-        // no part in the slip, if a free tangential direction remains: the wall sets it, and
-        // the limit mu |v_n| belongs to the slip it leaves (a 3D blade's face meeting a glass
-        // wall). With a single tangential direction (2D) nothing changes.
-        const unsigned walled = walled_components(view, n, p.normal);
-        Vec<Dim> slip = v_rel;
-        for (int d = 0; d < Dim; ++d) {
-          if ((walled >> d) & 1u) slip[d] = 0.0;
-        }
-        const Vec<Dim> v_t = slip - v_n * p.normal;
-        const double v_t_norm = v_t.norm();
-        const double limit = mu * (-v_n);
-        if (v_t_norm <= limit) {
-          v_new = v_body;
-          state = NodeState::stick;
-        } else {
-          v_new = v_body + (1.0 - limit / v_t_norm) * v_t;
-          state = NodeState::slip;
-        }
-        for (int d = 0; d < Dim; ++d) {
-          if ((walled >> d) & 1u) v_new[d] = v_trial[d];
-        }
+        const auto c = detail::coulomb_correction<Dim>(
+            v_trial, v_body, p.normal, v_n, mu, detail::walled_components(view, n, p.normal));
+        v_new = c.velocity;
+        state = c.state;
       }
       view.velocity[n] = v_new;
       if constexpr (Dim == 2) {
@@ -390,23 +373,6 @@ class RigidContact {
       e.force_on_material += r.force_on_material;
       records_.push_back(r);
     });
-  }
-
-  // The components view.held marks at node n, if the body's normal has none of them and at
-  // least one tangential direction stays free; else none.
-  static unsigned walled_components(const GridView<Dim>& view, Index n, const Vec<Dim>& normal) {
-    if (view.held.empty()) return 0u;
-    const unsigned held = view.held[static_cast<std::size_t>(n)];
-    if (held == 0u) return 0u;
-    int free = 0;
-    for (int d = 0; d < Dim; ++d) {
-      if (((held >> d) & 1u) == 0u) {
-        ++free;
-      } else if (std::abs(normal[d]) > 1e-12) {
-        return 0u;  // the wall holds part of the normal: conditions_applied reconciles it
-      }
-    }
-    return free >= 2 ? held : 0u;  // the normal's component and a tangential one
   }
 
   // A node the last correction looked at, kept for conditions_applied.
