@@ -80,6 +80,10 @@ xvfb-run -a -s "-screen 0 1280x1024x24" pvbatch --force-offscreen-rendering \
   --rig-height 0.3 --blade-height 0.15 --glass-friction 10 --settle-time 0.02 --travel 0.003 \
   --average-from 0.001 --average-to 0.003 --profile-at 0.002 --frame-interval 0.0015 \
   --out "$smoke/06"
+# Frames at 0, 1.5 and 3 mm: the end of travel gets its frame even when rounding stops the
+# run just short of the last mark.
+frames06=$(find "$smoke/06/frames" -name 'flat_blade_3d_*.h5' | wc -l)
+[ "$frames06" -eq 3 ] || { echo "example 06 wrote $frames06 frames, expected 3" >&2; exit 1; }
 scripts/check_paraview.sh "$smoke/paraview06" "$smoke/06/frames/flat_blade_3d.xdmf" \
   "$smoke/06/frames/flat_blade_3d_bodies.xdmf"
 /usr/bin/python3 scripts/plot_flat_blade_3d.py "$smoke/06" --out "$smoke/06/flat_blade_3d.png"

@@ -289,6 +289,9 @@ int run(const Case& c, const io::Options& options) {
     }
   }
   progress.finish(sim.time(), sim.step_count());
+  // The end of travel always gets a frame, also when rounding left it just short of the next
+  // mark or a signal stopped the run: the frames end on the state surface.csv describes.
+  if (frames && cutting && next_frame - c.frame_interval < travel - 1e-9) write_frame(travel);
   const double spacing = c.cell / static_cast<double>(c.particles_per_cell);
   io::write_csv(folder.claim("surface.csv"), {"x_m", "y_m", "z_top_m"},
                 surface_rows(sim, c.cell, spacing));
