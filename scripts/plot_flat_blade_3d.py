@@ -11,9 +11,9 @@ One PNG (default: RUN_DIR/flat_blade_3d.png of the first run), four panels:
   the free surface at the end, at mid-width and next to the glass;
   the normal stress on the blade against depth, at mid-width and at the glass.
 
---sweep PNG adds a second figure from the same runs, grouped by depth: the draft against the
-glass friction angle (glass 0: the frictionless walls, e.g. a one-cell slab) beside
-Sokolovski's value and the experiment derived from the paper's percentages (plot_paper.py),
+--sweep PNG adds a second figure from the same runs, grouped by depth: the draft as a multiple
+of Sokolovski's against the glass friction angle (glass 0: the frictionless walls, e.g. a
+one-cell slab) beside the experiment derived from the paper's percentages (plot_paper.py),
 and the draft the glass adds, as a fraction of the frictionless draft, against
 tan(glass angle), with the gap to the experiment each depth would need closed.
 --table prints the runs as a Markdown table (docs/validation.md): drafts against the
@@ -172,12 +172,11 @@ def plot_sweep(runs, out):
         angles = np.array([s["glass_friction_deg"] for s in series])
         values = np.array([s["draft_N_per_m"] for s in series])
         name = "h = %.0f mm" % (depth * 1e3)
-        drafts.plot(angles, values, colour + "o-", label=name)
         sokolovski = series[0]["sokolovski_N_per_m"]
-        drafts.axhline(sokolovski, color=colour, ls="--", lw=0.8)
+        drafts.plot(angles, values / sokolovski, colour + "o-", label=name)
         experiment = experiment_draft(depth, sokolovski)
         if experiment is not None:
-            drafts.axhline(experiment, color=colour, ls=":", lw=1.2)
+            drafts.axhline(experiment / sokolovski, color=colour, ls=":", lw=1.2)
         if angles[0] != 0.0:
             continue
         frictionless = values[0]
@@ -185,7 +184,8 @@ def plot_sweep(runs, out):
                    label=name)
         if experiment is not None:
             added.axhline(100 * (experiment / frictionless - 1), color=colour, ls=":", lw=1.2)
-    drafts.set(xlabel="glass friction angle [deg]", ylabel="draft per metre of width [N/m]",
+    drafts.axhline(1.0, color="k", ls="--", lw=0.8)
+    drafts.set(xlabel="glass friction angle [deg]", ylabel="draft / Sokolovski's",
                title="Draft (dashed: Sokolovski; dotted: experiment from the paper's %)")
     added.set(xlabel="tan(glass friction angle)", ylabel="draft added by the glass [%]",
               title="Added draft (dotted: what the experiment needs)")
