@@ -96,13 +96,14 @@ def main():
     across.set(xlabel="y / modelled width (0: symmetry plane, 1: glass)",
                ylabel="normal force on the blade [N/m]", title="Blade force across the rig")
     surface.set(xlabel="x [m]", ylabel="free surface [mm]",
-                title="Free surface at the end of travel")
+                title="Free surface at the end of travel (solid: mid-width; dotted: glass)")
     stress.set(xlabel="normal stress on the blade [kPa]", ylabel="depth [mm]",
                title="Blade normal stress at --profile-at")
     stress.invert_yaxis()
     for axis in axes.flat:
         axis.grid(alpha=0.3)
-        axis.legend(fontsize=7)
+        if axis.get_legend_handles_labels()[1]:
+            axis.legend(fontsize=7)
     fig.tight_layout()
     fig.savefig(out, dpi=110)
     print("plot_flat_blade_3d: wrote", out)
