@@ -84,6 +84,15 @@ xvfb-run -a -s "-screen 0 1280x1024x24" pvbatch --force-offscreen-rendering \
 # run just short of the last mark.
 frames06=$(find "$smoke/06/frames" -name 'flat_blade_3d_*.h5' | wc -l)
 [ "$frames06" -eq 3 ] || { echo "example 06 wrote $frames06 frames, expected 3" >&2; exit 1; }
+# The blade's normal force summed over the node columns is the draft (a vertical face: the
+# friction acts up and across), so the width profile loses or doubles no column.
+/usr/bin/python3 - "$smoke/06/summary.txt" <<'PY'
+import sys
+summary = dict(line.split(" = ") for line in open(sys.argv[1]).read().split("\n") if " = " in line)
+draft, across = float(summary["draft_N_per_m"]), float(summary["width_profile_mean_N_per_m"])
+if abs(across - draft) > 1e-9 * abs(draft):
+    sys.exit("example 06: the width profile sums to %r N/m, the draft is %r" % (across, draft))
+PY
 scripts/check_paraview.sh "$smoke/paraview06" "$smoke/06/frames/flat_blade_3d.xdmf" \
   "$smoke/06/frames/flat_blade_3d_bodies.xdmf"
 /usr/bin/python3 scripts/plot_flat_blade_3d.py "$smoke/06" --out "$smoke/06/flat_blade_3d.png"
