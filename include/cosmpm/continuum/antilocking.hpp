@@ -10,7 +10,9 @@
 //                        L_p <- L_p + (div_c - tr L_p) / Dim I,
 //                        div_c = sum_{q in c} V_q tr L_q / sum_{q in c} V_q;
 //                      the stress update and the deformation gradient take the averaged L_p,
-//                      so det F follows the cell's average volume change.
+//                      so det F follows the cell's average volume change. A point whose
+//                      grains have come apart (state.separation > 0) keeps its own rate and
+//                      stays out of the mean: its gap is not the packing's volume change.
 // The engine applies it as a stage before the stress update (stages/stress_update.hpp).
 
 namespace cosmpm::antilocking {
