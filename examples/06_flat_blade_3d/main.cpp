@@ -235,7 +235,6 @@ int run(const Case& c, const io::Options& options) {
   Vec<3> row_sum = Vec<3>::Zero(), average_sum = Vec<3>::Zero();
   double row_steps = 0.0, average_steps = 0.0, travel = 0.0;
   std::map<double, double> width_sum, width_at_profile;  // per node column y [N/m]
-  double width_steps = 0.0;
   const double rig_factor = c.width / modelled;
   while (sim.time() < end - 0.5 * dt && !stop.requested()) {
     if (!cutting && sim.time() >= start - 0.5 * dt) {
@@ -249,7 +248,8 @@ int run(const Case& c, const io::Options& options) {
     const Vec<3> force = sim.contact().force_on_material(body);
     row_sum += force;
     row_steps += 1.0;
-    if (travel >= c.average_from - 1e-12 && travel <= c.average_to + 1e-12) {
+    const bool in_window = travel >= c.average_from - 1e-12 && travel <= c.average_to + 1e-12;
+    if (in_window) {
       average_sum += force;
       average_steps += 1.0;
     }
@@ -261,7 +261,6 @@ int run(const Case& c, const io::Options& options) {
       row_steps = 0.0;
       next_row += 1e-4;
     }
-    const bool in_window = travel >= c.average_from - 1e-12 && travel <= c.average_to + 1e-12;
     const bool profile_now = !profiled && travel >= c.profile_at - 1e-12;
     if (in_window || profile_now) {
       const auto patches = sim.contact().traction_map(body, cutting_face);
@@ -275,16 +274,15 @@ int run(const Case& c, const io::Options& options) {
         const bool on_side = std::abs(y) < 1e-9 || std::abs(y - modelled) < 1e-9;
         const double scale = on_side ? 2.0 : 1.0;
         if (y < -1e-9 || y > modelled + 1e-9) continue;  // beyond the grid: no nodes
-        rows.push_back({p.centre[0], c.depth - p.centre[0], y, scale * p.normal_traction,
-                        scale * p.shear_traction[0], scale * p.shear_traction[1],
-                        static_cast<double>(p.nodes)});
+        if (profile_now)
+          rows.push_back({p.centre[0], c.depth - p.centre[0], y, scale * p.normal_traction,
+                          scale * p.shear_traction[0], scale * p.shear_traction[1],
+                          static_cast<double>(p.nodes)});
         per_width[y] += scale * p.normal_traction * p.size[0];
       }
-      if (in_window) {
-        // One step's nodal forces are noisy; the window's mean is what the draft is.
+      // One step's nodal forces are noisy; the window's mean is what the draft is.
+      if (in_window)
         for (const auto& [y, n] : per_width) width_sum[y] += n;
-        width_steps += 1.0;
-      }
       if (profile_now) {
         profiled = true;
         width_at_profile = per_width;
@@ -307,13 +305,14 @@ int run(const Case& c, const io::Options& options) {
   std::vector<std::vector<double>> width_rows;
   double width_integral = 0.0;  // trapezoid rule over the node columns [N]
   for (auto it = width_sum.begin(); it != width_sum.end(); ++it) {
-    const double mean_force = it->second / width_steps;
+    const double mean_force = it->second / average_steps;
     const auto snapshot = width_at_profile.find(it->first);
     width_rows.push_back({it->first, mean_force,
                           snapshot == width_at_profile.end() ? std::nan("") : snapshot->second});
     const auto next = std::next(it);
     if (next != width_sum.end())
-      width_integral += 0.5 * (mean_force + next->second / width_steps) * (next->first - it->first);
+      width_integral +=
+          0.5 * (mean_force + next->second / average_steps) * (next->first - it->first);
   }
   io::write_csv(folder.claim("width_profile.csv"),
                 {"y_m", "normal_force_N_per_m", "normal_force_at_profile_N_per_m"}, width_rows);
@@ -342,7 +341,7 @@ int run(const Case& c, const io::Options& options) {
       "%.1f N/m (%+.1f %%)\n",
       c.average_from * 1e3, c.average_to * 1e3, draft_per_m, mean[0] * rig_factor, c.width,
       sokolovski, 100.0 * (draft_per_m / sokolovski - 1.0));
-  if (width_steps > 0)
+  if (average_steps > 0)
     std::printf(
         "  blade normal force across the width, mean over the window: %.1f N/m (the "
         "draft: %.1f)\n",
