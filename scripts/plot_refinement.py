@@ -83,7 +83,8 @@ def main():
                         "cells_y": int(match.group(3)), "depth": float(match.group(4)),
                         "draft": float(summary["average_draft_N_per_m"][0]),
                         "sokolovski": float(summary["sokolovski_draft_N_per_m"][0]),
-                        "seconds": float(summary["run_seconds"][0])})
+                        "seconds": float(summary["run_seconds"][0]),
+                        "strays": int(float(summary.get("stray_particles", [0])[0]))})
     if not results:
         raise SystemExit("plot_refinement.py: no finished runs in %s/runs" % args.out)
     depths = sorted({r["depth"] for r in results})
@@ -136,6 +137,8 @@ def main():
                 text = "%.1f (%+.1f %%" % (r["draft"], 100 * (r["draft"] / r["sokolovski"] - 1))
                 if round(d, 6) in davis:
                     text += "; %+.1f %%" % (100 * (r["draft"] / davis[round(d, 6)] - 1))
+                if r["strays"]:
+                    text += "; %d point%s left the rig" % (r["strays"], "s" * (r["strays"] > 1))
                 cells_text.append(text + ")")
             any_row = next(iter(rows.values()))
             lines.append("| %s | %dx%d | %s | %.0f |" % (

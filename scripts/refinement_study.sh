@@ -6,7 +6,12 @@
 # Davis-reduced collapse load of the non-associated soil) and OUT/refinement.png.
 #
 #   scripts/refinement_study.sh [--floor fixed|friction] [--meshes "80x50 120x70 240x140"]
-#                               [--variants "linear fbar apic"] [--jobs N] [--out DIR]
+#                               [--variants "linear fbar apic"] [--options "..."] [--jobs N]
+#                               [--out DIR]
+#
+# --options: more options of example_03_flat_blade for every run, e.g. "--separated-pic
+# true". A point that leaves the rig is frozen and counted (--stray-particles freeze; the
+# table says how many), so one point cannot stop a 40-minute run.
 #
 # Default: the Coulomb floor (on the paper's fixed floor the bottom row held under the blade
 # adds 10-11 points to every draft, docs/validation.md); about 75 min of one core in all, most
@@ -18,15 +23,17 @@ floor=friction
 meshes="80x50 120x70 240x140"
 variants="linear fbar apic"
 jobs=2
+extra=
 out=
 while [ $# -gt 0 ]; do
   case "$1" in
     --floor) floor=$2; shift ;;
     --meshes) meshes=$2; shift ;;
     --variants) variants=$2; shift ;;
+    --options) extra=$2; shift ;;
     --jobs) jobs=$2; shift ;;
     --out) out=$2; shift ;;
-    -h | --help) sed -n '2,13p' "$0" | sed 's/^# \{0,1\}//'; exit 0 ;;
+    -h | --help) sed -n '2,18p' "$0" | sed 's/^# \{0,1\}//'; exit 0 ;;
     *) echo "refinement_study.sh: unknown argument '$1'" >&2; exit 2 ;;
   esac
   shift
@@ -57,7 +64,7 @@ for variant in $variants; do
   for mesh in $(tr ' ' '\n' <<<"$meshes" | sort -t x -k1,1nr); do
     for depth in 0.35 0.25 0.15; do
       queue_case "${variant}_${mesh}_h${depth}" \
-        "--depth $depth --mesh $mesh --floor $floor --frames false $options"
+        "--depth $depth --mesh $mesh --floor $floor --frames false --stray-particles freeze $options $extra"
     done
   done
 done

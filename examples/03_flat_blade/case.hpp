@@ -83,6 +83,8 @@ struct Case {
   double equilibrium_damping = 0.5;  // local damping while settling
   double damping = 0.0;              // local damping while cutting
   double flip_fraction = 1.0;
+  // Points whose grains came apart take the grid's velocity (PIC), not FLIP's.
+  bool separated_pic = false;
   double cfl = 0.5;
   // Contact also corrects the start-of-step velocity (Nairn, Hammerquist and Smith 2020).
   bool start_of_step_contact = false;
@@ -268,6 +270,10 @@ inline void declare_options(Options& o, Case& c) {
          "time step as a fraction of the stable one");
   o.real("flip", c.flip_fraction, {0.0, 1.0, Bounds::closed}, "",
          "FLIP share of the velocity update (1: FLIP, 0: PIC)");
+  o.flag("separated-pic", c.separated_pic,
+         "points whose grains have come apart (--separation) take the grid's velocity (PIC) "
+         "instead of FLIP's: a lone point that falls onto the floor is stopped there instead of "
+         "springing back faster than it came (docs/validation.md, \"Refinement\")");
   o.choice("stray-particles", c.stray_particles, {"stop", "freeze", "remove"},
            "a particle that leaves the rig (the grid): stop the run naming it, or take it out "
            "of the simulation, kept (freeze) or dropped (remove), counted in the summary");
@@ -368,10 +374,20 @@ inline void validate(const Options& o, Case& c) {
     o.fail("antilocking", "applies to nonpolar soil only (--polar true); leave it at none");
   }
   const bool separable = c.material == "mohr-coulomb" && c.cohesion == 0.0;
+  if (c.separated_pic && c.transfer == "apic") {
+    o.fail("separated-pic",
+           "has nothing to do with --transfer apic, whose velocity is PIC "
+           "already; leave it false or use --transfer flip-blend");
+  }
   if (c.separation_choice == "true" && !separable) {
     o.fail("separation", "is implemented for --material mohr-coulomb with --cohesion 0 only");
   }
   c.separation = c.separation_choice == "true" || (c.separation_choice == "auto" && separable);
+  if (c.separated_pic && !c.separation) {
+    o.fail("separated-pic",
+           "needs points that can come apart: --separation (on for cohesionless "
+           "--material mohr-coulomb)");
+  }
   if (c.dilatancy_cutoff > 0.0 && c.material != "mohr-coulomb") {
     o.fail("dilatancy-cutoff", "is implemented for --material mohr-coulomb only; leave it at 0");
   }

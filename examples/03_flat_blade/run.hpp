@@ -161,6 +161,7 @@ Outcome run(const Case& c, RunContext& context,
   parameters.gravity = rig.direction(Vec<2>(0.0, -c.gravity));
   parameters.damping = c.equilibrium_damping;
   parameters.flip_fraction = c.flip_fraction;
+  parameters.pic_where_separated = c.separated_pic;
   parameters.cfl = c.cfl;
   parameters.threads = c.threads;
   parameters.stray_particles = c.stray_particles == "freeze"   ? StrayParticles::freeze

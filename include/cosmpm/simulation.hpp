@@ -75,6 +75,12 @@ class Simulation : detail::CompositionChecks<Dim, Kernel, Continuum, Contact, Sc
                   ", which has no FLIP part (valid: unset or 1; the blend applies to "
                   "transfer::FlipBlend)");
     }
+    if (parameters.pic_where_separated && !stages::detail::tracks_separation<State>) {
+      throw Error(
+          "SimulationParameters: pic_where_separated = true, but the continuum's model keeps no "
+          "separation state (valid: false, or a model whose state has one, e.g. "
+          "material::MohrCoulomb)");
+    }
     check_free_surface_flow<Kernel, Transfer>(parameters);
   }
 

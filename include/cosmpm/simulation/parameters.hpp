@@ -33,6 +33,14 @@ struct SimulationParameters {
   // docs/validation.md, "Granular flow to rest" (which also gives its cost: damping).
   static constexpr double default_flip_fraction = 0.99;
   double flip_fraction_or_default() const { return flip_fraction.value_or(default_flip_fraction); }
+  // Points whose grains have come apart (a model with separation, state.separation > 0) take
+  // the grid's velocity (PIC) instead of the FLIP update. Such a point carries no stress, and
+  // under FLIP it keeps the velocity it brought onto a fixed node (whose acceleration is zero):
+  // compressed until its gap closes, it springs back faster than it came (a point falling
+  // behind the flat blade left the rig at 5 m/s, docs/validation.md, "Refinement"). PIC takes
+  // its velocity relative to the grid away, as inelastic grain collisions do. Off: the
+  // transfer's update for every point (APIC's is PIC already).
+  bool pic_where_separated = false;
   // Cundall local non-viscous damping coefficient on the nodal unbalanced force, in [0, 1).
   double damping = 0.0;
   // Time step; 0 means cfl * stable_time_step().

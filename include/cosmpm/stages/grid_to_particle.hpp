@@ -39,10 +39,28 @@ template <int Dim, class Blocks>
 struct ParticleMapPass {
   double dt;
   double flip;
-  const double* records;  // the gather records of update_grid
+  bool pic_where_separated;  // SimulationParameters::pic_where_separated
+  const double* records;     // the gather records of update_grid
   shape::StencilGrid<Dim> stencil_grid;
   Blocks blocks;  // BlockScheduler::Lookup
 };
+
+template <class State>
+inline constexpr bool tracks_separation = requires(typename State::model_type::state_type state) {
+  state.separation;
+};
+
+// The lanes whose point has come apart take the grid's velocity v_grid, the others v_new.
+template <int W, class State>
+COSMPM_ALWAYS_INLINE Pack<W> grid_velocity_where_separated(const State& s, Index p,
+                                                           const Pack<W>& v_new,
+                                                           const Pack<W>& v_grid) {
+  const auto& state =
+      s.particles.template get<particles::field::MaterialState<typename State::model_type>>();
+  return make_pack<W>([&](int l) {
+    return state[p + l].separation > 0.0 ? lane<W>(v_grid, l) : lane<W>(v_new, l);
+  });
+}
 
 // Grid to particles p, ..., p + W - 1.
 template <int W, bool with_stress_update, VelocityUpdate update, class State>
@@ -83,6 +101,9 @@ COSMPM_ALWAYS_INLINE void map_from_grid(State& s, Index p, const auto& pass, Ind
     } else {
       v_new = v_old + dt * a_grid;
       if constexpr (update == VelocityUpdate::blend) v_new = flip * v_new + (1.0 - flip) * v_grid;
+      if constexpr (tracks_separation<State>) {
+        if (pass.pic_where_separated) v_new = grid_velocity_where_separated<W>(s, p, v_new, v_grid);
+      }
     }
     const P x_new = x_old + dt * v_grid;
     xi[d] = (x_new - pass.stencil_grid.origin[d]) * pass.stencil_grid.inverse_cell_size[d];
@@ -179,7 +200,11 @@ void map_to_particles(State& s, double dt) {
   require_start_stencils(s, "map_to_particles");
   const Index count = s.particles.size();
   const ParticleMapPass<Dim, decltype(s.blocks.lookup())> pass{
-      dt, s.parameters.flip_fraction_or_default(), s.gather.data(), shape::StencilGrid<Dim>(s.grid),
+      dt,
+      s.parameters.flip_fraction_or_default(),
+      s.parameters.pic_where_separated,
+      s.gather.data(),
+      shape::StencilGrid<Dim>(s.grid),
       s.blocks.lookup()};
   Index first_outside = count;
   Index first_bad = count;
