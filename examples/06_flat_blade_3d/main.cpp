@@ -67,6 +67,7 @@ struct Case {
   double cell = 0.01;                                                                  // m
   long particles_per_cell = 2;                                                         // per axis
   double settle_time = 0.25, settle_damping = 0.5, flip = 1.0, cfl = 0.5;
+  bool separated_pic = false;     // points whose grains came apart take the grid's velocity
   double frame_interval = 0.005;  // m of travel
   bool frames = true;
   long threads = 0;
@@ -103,6 +104,9 @@ void declare(io::Options& o, Case& c) {
   o.integer("ppc", c.particles_per_cell, 1, 4, "particles per cell and axis");
   o.real("settle-time", c.settle_time, RealRange::non_negative(), "s", "K0 settling time");
   o.real("flip", c.flip, {0.0, 1.0, Bounds::closed}, "", "FLIP fraction of the velocity update");
+  o.flag("separated-pic", c.separated_pic,
+         "points whose grains have come apart take the grid's velocity (PIC) instead of FLIP's, "
+         "so corn falling behind the blade lands instead of bouncing (docs/theory/mpm.md)");
   o.real("cfl", c.cfl, {0.0, 1.0, Bounds::right_closed}, "", "time step / critical step");
   o.group("Output and run control");
   o.real("frame-interval", c.frame_interval, positive, "m", "travel between ParaView frames",
@@ -176,6 +180,7 @@ int run(const Case& c, const io::Options& options) {
   parameters.gravity = Vec<3>(0.0, 0.0, -9.81);
   parameters.damping = c.settle_damping;
   parameters.flip_fraction = c.flip;
+  parameters.pic_where_separated = c.separated_pic;
   parameters.cfl = c.cfl;
   parameters.threads = static_cast<int>(c.threads);
   Sim sim(grid, Model(mc), parameters, std::move(law));
