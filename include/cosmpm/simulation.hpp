@@ -26,6 +26,7 @@
 #include "cosmpm/grid/grid.hpp"
 #include "cosmpm/integrator/concept.hpp"
 #include "cosmpm/integrator/schemes.hpp"
+#include "cosmpm/material/concept.hpp"
 #include "cosmpm/particles/fields.hpp"
 #include "cosmpm/shape/concept.hpp"
 #include "cosmpm/simulation/block_scheduler.hpp"
@@ -75,7 +76,7 @@ class Simulation : detail::CompositionChecks<Dim, Kernel, Continuum, Contact, Sc
                   ", which has no FLIP part (valid: unset or 1; the blend applies to "
                   "transfer::FlipBlend)");
     }
-    if (parameters.pic_where_separated && !stages::detail::tracks_separation<State>) {
+    if (parameters.pic_where_separated && !material::records_separation<state_type>) {
       throw Error(
           "SimulationParameters: pic_where_separated = true, but the continuum's model keeps no "
           "separation state (valid: false, or a model whose state has one, e.g. "

@@ -40,6 +40,22 @@ struct PlasticState {
   std::array<double, 3> values() const { return {plastic_shear_strain, plastic, separation}; }
 };
 
+// Whether a model's state records separated grains (PlasticState::separation).
+template <class State>
+inline constexpr bool records_separation = requires(const State& state) {
+  state.separation;
+};
+
+// A point whose grains have come apart: stress-free until compression closes the gap.
+template <class State>
+bool grains_apart(const State& state) {
+  if constexpr (records_separation<State>) {
+    return state.separation > 0.0;
+  } else {
+    return false;
+  }
+}
+
 // A model of a material point. Contract, checked for every model by the conformance kit
 // (tests/material/conformance.hpp):
 //   - update(stress, state, de): `stress` holds the stress at the start of the increment and

@@ -15,6 +15,7 @@
 #include "cosmpm/core/pack.hpp"
 #include "cosmpm/core/parallel.hpp"
 #include "cosmpm/core/types.hpp"
+#include "cosmpm/material/concept.hpp"
 #include "cosmpm/particles/fields.hpp"
 #include "cosmpm/shape/separable.hpp"
 #include "cosmpm/shape/stencil_grid.hpp"
@@ -45,23 +46,6 @@ struct ParticleMapPass {
   Blocks blocks;  // BlockScheduler::Lookup
 };
 
-template <class State>
-inline constexpr bool tracks_separation = requires(typename State::model_type::state_type state) {
-  state.separation;
-};
-
-// The lanes whose point has come apart take the grid's velocity v_grid, the others v_new.
-template <int W, class State>
-COSMPM_ALWAYS_INLINE Pack<W> grid_velocity_where_separated(const State& s, Index p,
-                                                           const Pack<W>& v_new,
-                                                           const Pack<W>& v_grid) {
-  const auto& state =
-      s.particles.template get<particles::field::MaterialState<typename State::model_type>>();
-  return make_pack<W>([&](int l) {
-    return state[p + l].separation > 0.0 ? lane<W>(v_grid, l) : lane<W>(v_new, l);
-  });
-}
-
 // Grid to particles p, ..., p + W - 1.
 template <int W, bool with_stress_update, VelocityUpdate update, class State>
 COSMPM_ALWAYS_INLINE void map_from_grid(State& s, Index p, const auto& pass, Index& first_outside,
@@ -86,6 +70,22 @@ COSMPM_ALWAYS_INLINE void map_from_grid(State& s, Index p, const auto& pass, Ind
       pass.stencil_grid, [&](int l) -> const Vec<Dim>& { return start[p + l]; },
       [&](int l) -> const Vec<Dim>& { return half[p + l]; });
   const auto grid_values = shape::gather<Record::all, with_gradient>(st, pass.records);
+  // SimulationParameters::pic_where_separated: the lanes whose grains are apart take the grid's
+  // velocity, found once for all components.
+  constexpr bool separable =
+      !affine && material::records_separation<typename State::model_type::state_type>;
+  [[maybe_unused]] std::array<bool, W> apart{};
+  [[maybe_unused]] bool any_apart = false;
+  if constexpr (separable) {
+    if (pass.pic_where_separated) {
+      const auto& state =
+          particles.template get<particles::field::MaterialState<typename State::model_type>>();
+      for (int l = 0; l < W; ++l) {
+        apart[l] = material::grains_apart(state[p + l]);
+        any_apart = any_apart || apart[l];
+      }
+    }
+  }
   // New positions in cell units, for the box test and the particles' blocks.
   std::array<P, Dim> xi;
   for (int d = 0; d < Dim; ++d) {
@@ -101,8 +101,11 @@ COSMPM_ALWAYS_INLINE void map_from_grid(State& s, Index p, const auto& pass, Ind
     } else {
       v_new = v_old + dt * a_grid;
       if constexpr (update == VelocityUpdate::blend) v_new = flip * v_new + (1.0 - flip) * v_grid;
-      if constexpr (tracks_separation<State>) {
-        if (pass.pic_where_separated) v_new = grid_velocity_where_separated<W>(s, p, v_new, v_grid);
+      if constexpr (separable) {
+        if (any_apart) {
+          v_new = make_pack<W>(
+              [&](int l) { return apart[l] ? lane<W>(v_grid, l) : lane<W>(v_new, l); });
+        }
       }
     }
     const P x_new = x_old + dt * v_grid;

@@ -182,13 +182,7 @@ void average_volumetric_rate(State& s) {
   const auto& volume = s.particles.template get<particles::field::Volume>();
   const auto& state =
       s.particles.template get<particles::field::MaterialState<typename State::model_type>>();
-  const auto packed = [&](Index p) {
-    if constexpr (requires { state[p].separation; }) {
-      return !(state[p].separation > 0.0);
-    } else {
-      return true;
-    }
-  };
+  const auto packed = [&](Index p) { return !material::grains_apart(state[p]); };
   const Index count = s.particles.size();
   for (Index p = 0; p < count; ++p) {
     if (!packed(p)) continue;
