@@ -28,6 +28,7 @@
 #include <vector>
 
 #include "cosmpm/contact/concept.hpp"
+#include "cosmpm/contact/detail/body_on_grid.hpp"
 #include "cosmpm/contact/detail/contact_point.hpp"
 #include "cosmpm/contact/detail/coulomb_slip.hpp"
 #include "cosmpm/contact/detail/gaps.hpp"
@@ -254,24 +255,6 @@ class RigidContact {
     return bodies_[static_cast<std::size_t>(b)];
   }
 
-  static void require_on_grid(const grid::Grid<Dim>& g, const RigidBody<Dim>& body, int b) {
-    const Vec<Dim> lo = g.origin();
-    const Vec<Dim> hi = g.origin() + g.extent();
-    const auto point = [](const Vec<Dim>& x) {
-      std::string text = "[";
-      for (int d = 0; d < Dim; ++d) text += (d ? ", " : "") + detail::format_number(x[d]);
-      return text + "]";
-    };
-    for (int d = 0; d < Dim; ++d) {
-      if (body.upper_bound()[d] < lo[d] || body.lower_bound()[d] > hi[d]) {
-        throw Error("contact::RigidContact: rigid body " + std::to_string(b) +
-                    " with bounding box " + point(body.lower_bound()) + " - " +
-                    point(body.upper_bound()) + " lies outside the grid box " + point(lo) + " - " +
-                    point(hi) + " (valid range: the body must overlap the grid)");
-      }
-    }
-  }
-
   void measure_gaps(const GridView<Dim>& view, const RigidBody<Dim>& body, int b) {
     detail::smallest_gaps(view, body, b, gaps_);
   }
@@ -286,7 +269,7 @@ class RigidContact {
     Entry& e = bodies_[static_cast<std::size_t>(b)];
     const RigidBody<Dim>& body = e.body;
     const auto& g = view.grid;
-    require_on_grid(g, body, b);
+    detail::require_body_on_grid(g, body, b);
     if (gap_check_) measure_gaps(view, body, b);
     const double mid = view.time + 0.5 * view.dt;
     const Vec<Dim> body_velocity = body.velocity(mid);
