@@ -82,7 +82,9 @@ void BM_LinearElastic(benchmark::State& bench) {
   run(bench, model, view);
 }
 
-void BM_MohrCoulomb(benchmark::State& bench) {
+// Per point through update(), or (batched) through update_batch, on one mix of regions.
+template <bool batched>
+void mohr_coulomb(benchmark::State& bench) {
   static const Mix mixes[] = {Mix::mixed,          Mix::elastic, Mix::plane, Mix::compression_edge,
                               Mix::extension_edge, Mix::apex};
   static const char* names[] = {"mixed",          "elastic", "plane", "compression_edge",
@@ -92,7 +94,14 @@ void BM_MohrCoulomb(benchmark::State& bench) {
   const MohrCoulomb<double> model(kE, kNu, kPhi, kPsi);
   bench.SetLabel(std::string(names[index]) + ", plastic fraction " +
                  std::to_string(batch.plastic_fraction));
-  run(bench, model, batch);
+  run<batched>(bench, model, batch);
+}
+
+void BM_MohrCoulomb(benchmark::State& bench) {
+  mohr_coulomb<false>(bench);
+}
+void BM_MohrCoulomb_batch(benchmark::State& bench) {
+  mohr_coulomb<true>(bench);
 }
 
 void BM_DruckerPrager(benchmark::State& bench) {
@@ -199,6 +208,7 @@ void BM_CosseratDruckerPrager_batch(benchmark::State& bench) {
 
 BENCHMARK(BM_LinearElastic);
 BENCHMARK(BM_MohrCoulomb)->DenseRange(0, 5);
+BENCHMARK(BM_MohrCoulomb_batch)->DenseRange(0, 5);
 BENCHMARK(BM_DruckerPrager);
 BENCHMARK(BM_CosseratElastic);
 BENCHMARK(BM_CosseratDruckerPrager)->DenseRange(0, 2);

@@ -63,6 +63,14 @@ using cosmpm::gather_lanes;
 using cosmpm::lane_count;
 using cosmpm::lane_of;
 
+// Every lane of a V (lanes or a plain T) set to x.
+template <class V, class T>
+inline V splat(T x) {
+  V v;
+  gather_lanes(v, [&](int) { return x; });
+  return v;
+}
+
 // x = sqrt(x), lane by lane for lanes: the vector extensions have no square root, so lanes of
 // a register's width take the target's instruction (sqrtpd), others std::sqrt lane by lane.
 template <class V>

@@ -25,6 +25,7 @@
 #include <limits>
 
 #include "cosmpm/material/detail/isotropic_elasticity.hpp"
+#include "cosmpm/material/detail/lanes.hpp"
 #include "cosmpm/material/detail/multisurface_return.hpp"
 
 namespace cosmpm::material {
@@ -127,6 +128,55 @@ class MohrCoulombReturn {
   // Whether the sorted trial with f = yield(s1, s3) is elastic.
   bool is_elastic(T s1, T f) const { return f <= T(0) && (!has_cutoff_ || s1 <= cutoff_); }
 
+  // yield() on lanes of points (lanes.hpp), with its operations.
+  template <class V>
+  V yield_lanes(const V& s1, const V& s3) const {
+    return k_ * s1 - s3 - offset_;
+  }
+
+  // The return of cone() (no cut-off below the apex) on lanes of plastic trials, without a
+  // branch: every lane computes the plane and the edge returns and keeps the one cone() would
+  // have taken, each with cone()'s operations in cone()'s order, so a lane equals cone() bit for
+  // bit. Lanes where `use_isochoric` is set take `isochoric`'s flow (the same yield surface,
+  // psi = 0), as MohrCoulomb picks its flow past the dilatancy cut-off. `at_apex`: the lanes
+  // that ended at the apex.
+  template <class V, class Mask>
+  void cone_lanes(const V& s1, const V& s2, const V& s3, const V& f,
+                  const MohrCoulombReturn& isochoric, const Mask& use_isochoric, V& r1, V& r2,
+                  V& r3, V& gamma, Mask& at_apex) const {
+    const auto pick = [&](T own, T other) {
+      return use_isochoric ? splat<V>(other) : splat<V>(own);
+    };
+    const V p1 = s1 - pick(plane_step_[0], isochoric.plane_step_[0]) * f;
+    const V p2 = s2 - pick(plane_step_[1], isochoric.plane_step_[1]) * f;
+    const V p3 = s3 - pick(plane_step_[2], isochoric.plane_step_[2]) * f;
+    const Mask in_plane = p1 >= p2 && p2 >= p3;
+    const Mask compression_side = p1 < p2;
+    const auto side = [&](const Vec3& compression, const Vec3& extension, int i) {
+      return compression_side ? splat<V>(compression[i]) : splat<V>(extension[i]);
+    };
+    const auto normal = [&](int i) {
+      return use_isochoric
+                 ? side(isochoric.edge_c_scaled_normal_, isochoric.edge_e_scaled_normal_, i)
+                 : side(edge_c_scaled_normal_, edge_e_scaled_normal_, i);
+    };
+    const V a1 = side(edge_c_anchor_, edge_e_anchor_, 0);
+    const V a2 = side(edge_c_anchor_, edge_e_anchor_, 1);
+    const V a3 = side(edge_c_anchor_, edge_e_anchor_, 2);
+    const V along = normal(0) * (s1 - a1) + normal(1) * (s2 - a2) + normal(2) * (s3 - a3);
+    const V end = splat<V>(edge_end_);
+    const V t = along < end ? along : end;  // std::min(edge_end_, along)
+    const V e1 = a1 + t * side(edge_c_direction_, edge_e_direction_, 0);
+    const V e2 = a2 + t * side(edge_c_direction_, edge_e_direction_, 1);
+    const V e3 = a3 + t * side(edge_c_direction_, edge_e_direction_, 2);
+    const V edge_gamma = deviator_gamma_lanes(s1 - e1, s2 - e2, s3 - e3);
+    r1 = in_plane ? p1 : e1;
+    r2 = in_plane ? p2 : e2;
+    r3 = in_plane ? p3 : e3;
+    gamma = in_plane ? pick(plane_gamma_, isochoric.plane_gamma_) * f : edge_gamma;
+    at_apex = !in_plane && !(along <= end);
+  }
+
   // The return of a plastic trial s1 >= s2 >= s3 with f = yield(s1, s3): the returned principal
   // stresses r1 >= r2 >= r3, the equivalent plastic shear strain sqrt(2 e:e) of the plastic
   // strain's deviator, and (WithMap) d r / d s in the sorted order. `Cutoff` must be
@@ -217,6 +267,17 @@ class MohrCoulombReturn {
                           (d2 - removed_mean) * (d2 - removed_mean) +
                           (d3 - removed_mean) * (d3 - removed_mean))) /
            two_shear_;
+  }
+
+  // deviator_gamma() on lanes, with its operations.
+  template <class V>
+  V deviator_gamma_lanes(const V& d1, const V& d2, const V& d3) const {
+    const V removed_mean = (d1 + d2 + d3) / 3;
+    V norm =
+        2 * ((d1 - removed_mean) * (d1 - removed_mean) + (d2 - removed_mean) * (d2 - removed_mean) +
+             (d3 - removed_mean) * (d3 - removed_mean));
+    sqrt_in_place(norm);
+    return norm / two_shear_;
   }
 
   IsotropicElasticity<T> elastic_{};

@@ -1,0 +1,142 @@
+#pragma once
+// The batched update of the plane-strain MohrCoulomb (update_batch) without a tension cut-off
+// below the apex: L points at a time in SIMD lanes (the register width, lanes.hpp), trial,
+// split, yield check, the cone return and the rotation back all without a branch.
+//
+// Why: one point's update is a chain of dependent operations ending in a branch on elastic or
+// plastic, which mispredicts in a random mix of the two (the flat blade's run has both side by
+// side); its return then branches again on the region. Here every lane computes every region
+// and keeps the one the per-point update would have taken, each with that update's operations
+// in its order, so each lane equals update() bit for bit (the conformance kit checks it).
+//
+// Lanes go to the per-point update instead when their grains are apart (separation > 0: the
+// gap's own path) or their trial is not finite (update() then decides what the engine reports).
+#include <cstddef>
+
+#include "cosmpm/core/pack.hpp"
+#include "cosmpm/material/detail/isotropic_elasticity.hpp"
+#include "cosmpm/material/detail/lanes.hpp"
+#include "cosmpm/material/detail/mohr_coulomb_return.hpp"
+
+namespace cosmpm::material::detail {
+
+template <class T>
+struct MohrCoulombBatch2D {
+  const IsotropicElasticity<T>& elastic;
+  const MohrCoulombReturn<T>& flow;       // the return with the model's dilatancy
+  const MohrCoulombReturn<T>& isochoric;  // psi = 0, past the dilatancy cut-off
+  double dilatancy_cutoff_strain;
+  bool separation;
+
+  // stress, state and de arrays of `count` points, L at a time (L >= 2 and has_lanes, or
+  // L = 1: all per point); per_point(stress, state, de) is update().
+  template <int L, class Stress, class State, class Strain, class PerPoint>
+  void run(Stress* stress, State* state, const Strain* de, std::size_t count,
+           PerPoint&& per_point) const {
+    std::size_t i = 0;
+    if constexpr (L >= 2) {
+      for (; i + L <= count; i += L) lanes<L>(stress + i, state + i, de + i, per_point);
+    }
+    for (; i < count; ++i) per_point(stress[i], state[i], de[i]);
+  }
+
+ private:
+  template <int L, class Stress, class State, class Strain, class PerPoint>
+  void lanes(Stress* stress, State* state, const Strain* de, PerPoint& per_point) const {
+    using V = Lanes<T, L>;
+    using Mask = decltype(V{} < V{});
+    const auto load = [](V& to, const auto& value) { gather_lanes(to, value); };
+    V sxx, syy, szz, sxy, dxx, dyy, dzz, dxy, shear_strain, gap;
+    load(sxx, [&](int l) { return stress[l][0]; });
+    load(syy, [&](int l) { return stress[l][1]; });
+    load(szz, [&](int l) { return stress[l][2]; });
+    load(sxy, [&](int l) { return stress[l][3]; });
+    load(dxx, [&](int l) { return de[l][0]; });
+    load(dyy, [&](int l) { return de[l][1]; });
+    load(dzz, [&](int l) { return de[l][2]; });
+    load(dxy, [&](int l) { return de[l][3]; });
+    load(shear_strain, [&](int l) { return T(state[l].plastic_shear_strain); });
+    load(gap, [&](int l) { return T(state[l].separation); });
+    const V zero = splat<V>(T(0));
+
+    // The trial, as isotropic_trial.
+    const T lambda = elastic.lambda;
+    const T two_shear = 2 * elastic.shear;
+    const V volumetric = lambda * (dxx + dyy + dzz);
+    const V txx = sxx + (volumetric + two_shear * dxx);
+    const V tyy = syy + (volumetric + two_shear * dyy);
+    const V tzz = szz + (volumetric + two_shear * dzz);
+    const V txy = sxy + two_shear * dxy;
+
+    // The split, as PlaneStrainSplit (std::max(x, y) is y > x ? y : x; std::min(x, y) is
+    // y < x ? y : x).
+    const V mean = (txx + tyy) / 2;
+    const V half = (txx - tyy) / 2;
+    V radius = half * half + txy * txy;
+    sqrt_in_place(radius);
+    const V a = mean + radius;
+    const V b = mean - radius;
+    const V s1 = a < tzz ? tzz : a;
+    const V upper = tzz < b ? b : tzz;
+    const V s2 = a < upper ? a : upper;
+    const V s3 = tzz < b ? tzz : b;
+    const V f = flow.yield_lanes(s1, s3);
+    const Mask elastic_lane = f <= zero;
+    const V finite = (txx - txx) + (tyy - tyy) + (tzz - tzz) + (txy - txy);
+    Mask per_point_lane = !(finite == zero);
+    if (separation) per_point_lane = per_point_lane || gap > zero;
+    // Runs of elastic points are common (the engine's points come in space order): one branch.
+    if (cosmpm::all_lanes<L>(elastic_lane && !per_point_lane)) {
+      for (int l = 0; l < L; ++l) {
+        stress[l][0] = txx[l];
+        stress[l][1] = tyy[l];
+        stress[l][2] = tzz[l];
+        stress[l][3] = txy[l];
+        state[l].plastic = 0.0;
+      }
+      return;
+    }
+
+    // The cone return and the rotation back (PlaneStrainSplit::back), for every lane.
+    const Mask use_isochoric = shear_strain >= splat<V>(T(dilatancy_cutoff_strain));
+    V r1, r2, r3, gamma;
+    Mask at_apex;
+    flow.cone_lanes(s1, s2, s3, f, isochoric, use_isochoric, r1, r2, r3, gamma, at_apex);
+    const Mask zz_first = tzz >= a;
+    const Mask zz_second = !zz_first && tzz >= b;
+    const V natural_a = zz_first ? r2 : r1;
+    const V natural_b = zz_first || zz_second ? r3 : r2;
+    const V natural_z = zz_first ? r1 : (zz_second ? r2 : r3);
+    const V ratio = radius > zero ? (natural_a - natural_b) / (2 * radius) : zero;
+    const V new_mean = (natural_a + natural_b) / 2;
+    const V out_xx = elastic_lane ? txx : new_mean + half * ratio;
+    const V out_yy = elastic_lane ? tyy : new_mean - half * ratio;
+    const V out_zz = elastic_lane ? tzz : natural_z;
+    const V out_xy = elastic_lane ? txy : txy * ratio;
+    const V plastic = elastic_lane ? zero : splat<V>(T(1));
+    const V new_shear_strain = elastic_lane ? shear_strain : shear_strain + gamma;
+    // With separation, an apex return's plastic volumetric strain is the gap (update_separating).
+    const T bulk = elastic.bulk();
+    const V trial_mean = (sxx + syy + szz) / 3 + bulk * (dxx + dyy + dzz);
+    const Mask opens = !elastic_lane && at_apex && trial_mean > zero;
+    V new_gap = gap;
+    if (separation) new_gap = opens ? gap + trial_mean / bulk : gap;
+
+    // The per-point update for lanes apart or with a trial that is not finite.
+    for (int l = 0; l < L; ++l) {
+      if (per_point_lane[l]) [[unlikely]] {
+        per_point(stress[l], state[l], de[l]);
+        continue;
+      }
+      stress[l][0] = out_xx[l];
+      stress[l][1] = out_yy[l];
+      stress[l][2] = out_zz[l];
+      stress[l][3] = out_xy[l];
+      state[l].plastic_shear_strain = static_cast<double>(new_shear_strain[l]);
+      state[l].plastic = static_cast<double>(plastic[l]);
+      state[l].separation = static_cast<double>(new_gap[l]);
+    }
+  }
+};
+
+}  // namespace cosmpm::material::detail
