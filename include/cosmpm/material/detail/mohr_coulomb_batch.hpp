@@ -11,6 +11,7 @@
 //
 // Lanes go to the per-point update instead when their grains are apart (separation > 0: the
 // gap's own path) or their trial is not finite (update() then decides what the engine reports).
+#include <array>
 #include <cstddef>
 
 #include "cosmpm/core/pack.hpp"
@@ -45,28 +46,19 @@ struct MohrCoulombBatch2D {
   void lanes(Stress* stress, State* state, const Strain* de, PerPoint& per_point) const {
     using V = Lanes<T, L>;
     using Mask = decltype(V{} < V{});
-    const auto load = [](V& to, const auto& value) { gather_lanes(to, value); };
-    V sxx, syy, szz, sxy, dxx, dyy, dzz, dxy, shear_strain, gap;
-    load(sxx, [&](int l) { return stress[l][0]; });
-    load(syy, [&](int l) { return stress[l][1]; });
-    load(szz, [&](int l) { return stress[l][2]; });
-    load(sxy, [&](int l) { return stress[l][3]; });
-    load(dxx, [&](int l) { return de[l][0]; });
-    load(dyy, [&](int l) { return de[l][1]; });
-    load(dzz, [&](int l) { return de[l][2]; });
-    load(dxy, [&](int l) { return de[l][3]; });
-    load(shear_strain, [&](int l) { return T(state[l].plastic_shear_strain); });
-    load(gap, [&](int l) { return T(state[l].separation); });
+    std::array<V, 4> old_stress, de_lanes;
+    for (int c = 0; c < 4; ++c) {
+      gather_lanes(old_stress[c], [&](int l) { return stress[l][c]; });
+      gather_lanes(de_lanes[c], [&](int l) { return de[l][c]; });
+    }
+    V shear_strain, gap;
+    gather_lanes(shear_strain, [&](int l) { return T(state[l].plastic_shear_strain); });
+    gather_lanes(gap, [&](int l) { return T(state[l].separation); });
     const V zero = splat<V>(T(0));
 
-    // The trial, as isotropic_trial.
-    const T lambda = elastic.lambda;
-    const T two_shear = 2 * elastic.shear;
-    const V volumetric = lambda * (dxx + dyy + dzz);
-    const V txx = sxx + (volumetric + two_shear * dxx);
-    const V tyy = syy + (volumetric + two_shear * dyy);
-    const V tzz = szz + (volumetric + two_shear * dzz);
-    const V txy = sxy + two_shear * dxy;
+    // The trial: the per-point update's own formula, on lanes.
+    const std::array<V, 4> trial = elastic.template trial<4>(old_stress, de_lanes);
+    const V &txx = trial[0], &tyy = trial[1], &tzz = trial[2], &txy = trial[3];
 
     // The split, as PlaneStrainSplit (std::max(x, y) is y > x ? y : x; std::min(x, y) is
     // y < x ? y : x).
@@ -80,7 +72,7 @@ struct MohrCoulombBatch2D {
     const V upper = tzz < b ? b : tzz;
     const V s2 = a < upper ? a : upper;
     const V s3 = tzz < b ? tzz : b;
-    const V f = flow.yield_lanes(s1, s3);
+    const V f = flow.yield(s1, s3);
     const Mask elastic_lane = f <= zero;
     const V finite = (txx - txx) + (tyy - tyy) + (tzz - tzz) + (txy - txy);
     Mask per_point_lane = !(finite == zero);
@@ -117,7 +109,8 @@ struct MohrCoulombBatch2D {
     const V new_shear_strain = elastic_lane ? shear_strain : shear_strain + gamma;
     // With separation, an apex return's plastic volumetric strain is the gap (update_separating).
     const T bulk = elastic.bulk();
-    const V trial_mean = (sxx + syy + szz) / 3 + bulk * (dxx + dyy + dzz);
+    const V trial_mean = (old_stress[0] + old_stress[1] + old_stress[2]) / 3 +
+                         bulk * (de_lanes[0] + de_lanes[1] + de_lanes[2]);
     const Mask opens = !elastic_lane && at_apex && trial_mean > zero;
     V new_gap = gap;
     if (separation) new_gap = opens ? gap + trial_mean / bulk : gap;

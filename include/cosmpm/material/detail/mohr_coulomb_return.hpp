@@ -117,7 +117,11 @@ class MohrCoulombReturn {
   bool has_apex() const { return has_apex_; }
 
   // k s1 - s3 - 2 c sqrt(k) of sorted principal stresses.
-  T yield(T s1, T s3) const { return k_ * s1 - s3 - offset_; }
+  // On a T or on lanes of T (lanes.hpp), with the same operations.
+  template <class V>
+  V yield(const V& s1, const V& s3) const {
+    return k_ * s1 - s3 - offset_;
+  }
   // Whether a trial of mean stress p and second deviatoric invariant J2 lies inside the cone
   // inscribed in the yield surface (and below the cut-off): elastic for sure, without its
   // principal values.
@@ -127,12 +131,6 @@ class MohrCoulombReturn {
   }
   // Whether the sorted trial with f = yield(s1, s3) is elastic.
   bool is_elastic(T s1, T f) const { return f <= T(0) && (!has_cutoff_ || s1 <= cutoff_); }
-
-  // yield() on lanes of points (lanes.hpp), with its operations.
-  template <class V>
-  V yield_lanes(const V& s1, const V& s3) const {
-    return k_ * s1 - s3 - offset_;
-  }
 
   // The return of cone() (no cut-off below the apex) on lanes of plastic trials, without a
   // branch: every lane computes the plane and the edge returns and keeps the one cone() would
@@ -169,7 +167,7 @@ class MohrCoulombReturn {
     const V e1 = a1 + t * side(edge_c_direction_, edge_e_direction_, 0);
     const V e2 = a2 + t * side(edge_c_direction_, edge_e_direction_, 1);
     const V e3 = a3 + t * side(edge_c_direction_, edge_e_direction_, 2);
-    const V edge_gamma = deviator_gamma_lanes(s1 - e1, s2 - e2, s3 - e3);
+    const V edge_gamma = deviator_gamma<V>(s1 - e1, s2 - e2, s3 - e3);
     r1 = in_plane ? p1 : e1;
     r2 = in_plane ? p2 : e2;
     r3 = in_plane ? p3 : e3;
@@ -261,17 +259,9 @@ class MohrCoulombReturn {
 
   // sqrt(2 e:e) of the plastic strain's deviator for the removed stress d: the deviator of d
   // over 2G (the removed stress is D times the plastic strain, and D scales deviators by 2G).
-  T deviator_gamma(T d1, T d2, T d3) const {
-    const T removed_mean = (d1 + d2 + d3) / 3;
-    return std::sqrt(2 * ((d1 - removed_mean) * (d1 - removed_mean) +
-                          (d2 - removed_mean) * (d2 - removed_mean) +
-                          (d3 - removed_mean) * (d3 - removed_mean))) /
-           two_shear_;
-  }
-
-  // deviator_gamma() on lanes, with its operations.
+  // On a T or on lanes of T.
   template <class V>
-  V deviator_gamma_lanes(const V& d1, const V& d2, const V& d3) const {
+  V deviator_gamma(const V& d1, const V& d2, const V& d3) const {
     const V removed_mean = (d1 + d2 + d3) / 3;
     V norm =
         2 * ((d1 - removed_mean) * (d1 - removed_mean) + (d2 - removed_mean) * (d2 - removed_mean) +
