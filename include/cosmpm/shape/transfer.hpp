@@ -5,6 +5,7 @@
 // one axis at a time.
 #include <array>
 #include <cstddef>
+#include <cstring>
 #include <type_traits>
 
 #include "cosmpm/core/compiler.hpp"
@@ -96,10 +97,40 @@ COSMPM_ALWAYS_INLINE Gathered<Dim, C, G, Pack<W>> gather(const PackedStencil<Dim
   });
 }
 
+namespace detail {
+// row[k + l] += weight along[k + l] + sum_{d >= 1} gradient[d] across[d - 1][k + l] for the
+// lanes l of V, in that order of operations whatever V is.
+template <class V, std::size_t Dim, std::size_t N, std::size_t A>
+COSMPM_ALWAYS_INLINE void add_to_row(double* row, int k, double weight,
+                                     const std::array<double, Dim>& gradient,
+                                     const std::array<double, N>& along,
+                                     const std::array<std::array<double, N>, A>& across) {
+  // The factors go into registers lane by lane: vector loads of values just stored one by
+  // one would stall on store forwarding.
+  V a, r;
+  gather_lanes(a, [&](int l) { return along[k + l]; });
+  V add = weight * a;
+  COSMPM_UNROLL
+  for (std::size_t d = 0; d < A; ++d) {
+    V b;
+    gather_lanes(b, [&](int l) { return across[d][k + l]; });
+    add += gradient[d + 1] * b;
+  }
+  std::memcpy(&r, row + k, sizeof(V));
+  r += add;
+  std::memcpy(row + k, &r, sizeof(V));
+}
+}  // namespace detail
+
 // Particle-to-grid: adds to the C components of `records`
 //   N_n weighted[c]                                          c < W
 //   N_n weighted[c] + sum_d dN_n/dx_d by_gradient[c - W][d]   W <= c < C
 // (mass and momentum are weighted only; forces also take the stress divergence).
+//
+// A row of the stencil is S * C consecutive doubles, so it is updated in packs of the
+// register width (core/pack.hpp; GCC left the per-component loops scalar). The per-node
+// factors are laid out as that row first, with zero stress-divergence factors for the
+// weighted-only components: adding their product, +-0, changes no nonzero sum.
 template <int W, int Dim, Kernel K, std::size_t C>
 COSMPM_ALWAYS_INLINE void scatter(
     const SeparableStencil<Dim, K>& s, double* records, const std::array<double, C>& weighted,
@@ -108,18 +139,27 @@ COSMPM_ALWAYS_INLINE void scatter(
   constexpr int S = K::support;
   constexpr int F = static_cast<int>(C) - W;
   constexpr int R = static_cast<int>(C);
-  // Per node i along x: what the row factors multiply.
-  std::array<std::array<double, C>, S> along;                    // N_x(i) a + dN_x(i) b_x
-  std::array<std::array<std::array<double, Dim>, F>, S> across;  // N_x(i) b_d, d >= 1
+  constexpr int N = S * R;  // one row's doubles
+  // Element i * R + c of a row: what the row weight multiplies, N_x(i) a + dN_x(i) b_x, and
+  // what the row's derivative along d >= 1 multiplies, N_x(i) b_d.
+  std::array<double, N> along;
+  std::array<std::array<double, N>, (F > 0 ? Dim - 1 : 0)> across;
   COSMPM_UNROLL
   for (int i = 0; i < S; ++i) {
     COSMPM_UNROLL
-    for (int c = 0; c < R; ++c) along[i][c] = s.w[0][i] * weighted[c];
-    COSMPM_UNROLL
-    for (int f = 0; f < F; ++f) {
-      along[i][W + f] += s.dw[0][i] * by_gradient[f][0];
+    for (int c = 0; c < R; ++c) along[i * R + c] = s.w[0][i] * weighted[c];
+    if constexpr (F > 0) {
       COSMPM_UNROLL
-      for (int d = 1; d < Dim; ++d) across[i][f][d] = s.w[0][i] * by_gradient[f][d];
+      for (int d = 1; d < Dim; ++d) {
+        COSMPM_UNROLL
+        for (int c = 0; c < W; ++c) across[d - 1][i * R + c] = 0.0;
+      }
+      COSMPM_UNROLL
+      for (int f = 0; f < F; ++f) {
+        along[i * R + W + f] += s.dw[0][i] * by_gradient[f][0];
+        COSMPM_UNROLL
+        for (int d = 1; d < Dim; ++d) across[d - 1][i * R + W + f] = s.w[0][i] * by_gradient[f][d];
+      }
     }
   }
   COSMPM_UNROLL
@@ -128,18 +168,19 @@ COSMPM_ALWAYS_INLINE void scatter(
     double weight;
     std::array<double, Dim> gradient;
     s.row_factors(r, weight, gradient);
+    // Packs of the register width, then a pair, then single doubles.
+    constexpr int P = pack_width;
+    constexpr int packed = N / P * P;
+    constexpr int paired = P > 2 ? packed + (N - packed) / 2 * 2 : packed;
     COSMPM_UNROLL
-    for (int i = 0; i < S; ++i) {
-      COSMPM_UNROLL
-      for (int c = 0; c < W; ++c) row[i * R + c] += weight * along[i][c];
-      COSMPM_UNROLL
-      for (int f = 0; f < F; ++f) {
-        double add = weight * along[i][W + f];
-        COSMPM_UNROLL
-        for (int d = 1; d < Dim; ++d) add += gradient[d] * across[i][f][d];
-        row[i * R + W + f] += add;
-      }
-    }
+    for (int k = 0; k < packed; k += P)
+      detail::add_to_row<Pack<P>>(row, k, weight, gradient, along, across);
+    COSMPM_UNROLL
+    for (int k = packed; k < paired; k += 2)
+      detail::add_to_row<Pack<2>>(row, k, weight, gradient, along, across);
+    COSMPM_UNROLL
+    for (int k = paired; k < N; ++k)
+      detail::add_to_row<double>(row, k, weight, gradient, along, across);
   }
 }
 

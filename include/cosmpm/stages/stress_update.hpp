@@ -112,6 +112,30 @@ COSMPM_ALWAYS_INLINE Pack<W> update_stress_packed(
   }
 }
 
+namespace detail {
+// Stage 4a for particles p, ..., p + W - 1 side by side (their stencils and node sums in
+// packs; each lane does the one-particle arithmetic, in its order).
+template <int W, class State>
+COSMPM_ALWAYS_INLINE void rates_from_grid(State& s, Index p,
+                                          const shape::StencilGrid<State::dim>& stencil_grid,
+                                          const double* records) {
+  constexpr int Dim = State::dim;
+  constexpr int size = State::gather_record::with_gradient;
+  const auto& half = s.particles.template get<particles::field::HalfWidth<Dim>>();
+  auto& L = s.particles.template get<particles::field::VelocityGradient<Dim>>();
+  shape::PackedStencil<Dim, typename State::kernel_type, W> st;
+  st.compute_from_cell_units(
+      stencil_grid, [&](int l) -> const Vec<Dim>& { return s.stencil_cells[p + l]; },
+      [&](int l) -> const Vec<Dim>& { return half[p + l]; });
+  const auto values = shape::gather<size, size>(st, records);
+  for (int l = 0; l < W; ++l) {
+    const auto rates = rates_from<State, W>(values, l);
+    store_components(L[p + l], rates.velocity_gradient);
+    s.particle_rates[p + l] = rates;
+  }
+}
+}  // namespace detail
+
 // Stage 4a: particle rates from a nodal velocity field (and the rotational rates, ignored by a
 // classical continuum), at the stencils of the start of the step.
 template <class State>
@@ -134,17 +158,14 @@ void velocity_gradient_from_grid(State& s, const std::vector<Vec<State::dim>>& n
   const double* const records = s.gather.data();
   const shape::StencilGrid<Dim> stencil_grid(s.grid);
   require_start_stencils(s, "velocity_gradient_from_grid");
-  auto& L = s.particles.template get<particles::field::VelocityGradient<Dim>>();
   const Index count = s.particles.size();
   s.particle_rates.resize(static_cast<std::size_t>(count));
-  COSMPM_OMP_PARALLEL_FOR(s.threads, count, 256)
-  for (Index p = 0; p < count; ++p) {
-    typename State::stencil_type st;
-    start_stencil(s, p, stencil_grid, st);
-    const auto rates = rates_from<State, 1>(shape::gather<size, size>(st, records), 0);
-    L[p] = rates.velocity_gradient;
-    s.particle_rates[p] = rates;
-  }
+  // pack_width particles at a time, then the rest one by one.
+  constexpr int W = pack_width;
+  const Index packs = count / W;
+  COSMPM_OMP_PARALLEL_FOR(s.threads, count, 64)
+  for (Index b = 0; b < packs; ++b) detail::rates_from_grid<W>(s, b * W, stencil_grid, records);
+  for (Index p = packs * W; p < count; ++p) detail::rates_from_grid<1>(s, p, stencil_grid, records);
 }
 
 // Whether the continuum averages the volumetric strain rate over cells (antilocking::FBar).
