@@ -17,8 +17,8 @@ if [[ -z $filter || $# -lt 1 ]]; then
   echo "usage: $0 [-r ROUNDS] [-c CORE] -f FILTER LABEL=BINARY [LABEL=BINARY ...]" >&2
   exit 2
 fi
-csv=$(mktemp)
-trap 'rm -f "$csv"' EXIT
+csv=$(mktemp) errors=$(mktemp)
+trap 'rm -f "$csv" "$errors"' EXIT
 echo "uptime before: $(uptime)" >&2
 for ((round = 1; round <= rounds; ++round)); do
   for pair in "$@"; do
@@ -26,8 +26,13 @@ for ((round = 1; round <= rounds; ++round)); do
     OMP_WAIT_POLICY=passive taskset -c "$core" "$binary" --benchmark_filter="$filter" \
       --benchmark_repetitions=5 --benchmark_enable_random_interleaving=true \
       --benchmark_report_aggregates_only=true --benchmark_min_time=0.5 \
-      --benchmark_format=csv 2>/dev/null | { grep '_median"' || true; } |
-      sed "s/^/$label,$round,/" >>"$csv"
+      --benchmark_format=csv 2>"$errors" | { grep '_median"' || true; } |
+      sed "s/^/$label,$round,/" >>"$csv" || {
+      status=$?  # the benchmark's own message (an exception's, say) is in its standard error
+      echo "$binary failed (status $status) in round $round; its standard error ends:" >&2
+      tail -n 5 "$errors" >&2
+      exit "$status"
+    }
     if ! grep -q "^$label,$round," "$csv"; then
       echo "$binary: no benchmark matches '$filter'" >&2
       exit 1

@@ -79,24 +79,33 @@ Sim soil_block(const grid::Grid<Sim::dim>& grid, const Vec<Sim::dim>& fill, int 
   return sim;
 }
 
-// Full steps of the stable size, timed; counters: the particles, the threads and, for a
-// plastic model, the fraction of particles whose last update was plastic (the cost of a
-// Mohr-Coulomb step depends on it, in 3D by the eigenproblem of each plastic point).
+// items_per_second (particle-steps per second, from the timed loop's iterations) and the
+// counters: the particles, the threads and the fraction of particles whose last update was
+// plastic (the cost of a Mohr-Coulomb step depends on it, in 3D by the eigenproblem of each
+// plastic point; 0 for an elastic model). Every benchmark sets the same counters: Google
+// Benchmark's CSV output, which scripts/bench_interleaved.sh reads, aborts when a run has a
+// counter that the first run reported lacked, and random interleaving puts any one first.
 template <class Sim>
-void time_full_steps(benchmark::State& state, Sim& sim) {
-  const double dt = sim.time_step();
-  for (auto _ : state) sim.step(dt);
+void report_counters(benchmark::State& state, const Sim& sim) {
   const Index count = sim.particles().size();
   state.SetItemsProcessed(state.iterations() * count);
   state.counters["particles"] = static_cast<double>(count);
   state.counters["threads"] = static_cast<double>(sim.threads());
   using Model = typename Sim::model_type;
+  double plastic = 0.0;
   if constexpr (std::is_same_v<typename Model::state_type, material::PlasticState>) {
     const auto& states = sim.particles().template get<particles::field::MaterialState<Model>>();
-    double plastic = 0.0;
     for (Index p = 0; p < count; ++p) plastic += states[p].plastic;
-    state.counters["plastic_fraction"] = plastic / static_cast<double>(count);
   }
+  state.counters["plastic_fraction"] = plastic / static_cast<double>(count);
+}
+
+// Full steps of the stable size, timed, and their counters.
+template <class Sim>
+void time_full_steps(benchmark::State& state, Sim& sim) {
+  const double dt = sim.time_step();
+  for (auto _ : state) sim.step(dt);
+  report_counters(state, sim);
 }
 
 }  // namespace cosmpm::benchmarks
