@@ -5,11 +5,33 @@
 // scales at the same time. Each item is an independent chain of 256 multiply-adds on 16,800
 // values (the step benchmarks' particle count): bound by arithmetic, not memory, and about as
 // long on one thread as a step (0.3 ms here), so the fork and join weigh as much as in a step.
+//
+// That loop is bound by the latency of its chains: one chain per vector register in flight
+// leaves most of a core's arithmetic units idle, so two hardware threads of ONE core run it
+// nearly twice as fast as one, and it scales whether or not the vCPUs share a core. Our steps
+// are bound by throughput (many independent operations per particle), so
+// host/throughput_loop runs the same arithmetic with 32 items per chain step (eight
+// independent vector registers with AVX, enough to keep both multiply-add units busy): it
+// scales only on two separate cores. Read the two together: both near 2 = two cores; the
+// plain loop near 2 and this one near 1 = two threads of one core, where no throughput-bound
+// step can scale.
+//
+// Neither loop moves data between the vCPUs, and on this VM that is what decided whether the
+// step scaled: host/cache_halves updates two arrays of 1 MB (about a third of the step's
+// particle data), each thread always its own half; host/cache_halves_swapped gives each half
+// to the other thread every pass, so every line read was last written on the other vCPU (what
+// a step did when its passes handed particles to threads as they came free). docs/
+// performance.md ("Two threads and the host") has the figures; scripts/bench_scaling.py runs
+// these controls beside the steps.
 //   build/release/benchmarks/cosmpm_bench_host --benchmark_repetitions=5
 #include <benchmark/benchmark.h>
 
 #include <cstddef>
 #include <vector>
+
+#if defined(_OPENMP)
+#include <omp.h>
+#endif
 
 namespace {
 
@@ -37,6 +59,78 @@ void plain_loop(benchmark::State& state) {
   state.counters["threads"] = threads;
 }
 
+// The same chains, 32 items advanced together in each step of the chain.
+void throughput_loop(benchmark::State& state) {
+  const int threads = static_cast<int>(state.range(0));
+  constexpr long block = 32;
+  static_assert(item_count % block == 0);
+  std::vector<double> values(item_count, 1.0);
+  for (auto _ : state) {
+    const auto blocks = static_cast<long>(values.size()) / block;
+#if defined(_OPENMP)
+#pragma omp parallel for schedule(static) num_threads(threads)
+#endif
+    for (long b = 0; b < blocks; ++b) {
+      double x[block];
+      double* const v = values.data() + b * block;
+      for (long j = 0; j < block; ++j) x[j] = v[j];
+      for (int k = 0; k < chain_length; ++k) {
+        for (long j = 0; j < block; ++j) x[j] = 0.5 * x[j] + 0.5;
+      }
+      for (long j = 0; j < block; ++j) v[j] = x[j];
+    }
+    benchmark::DoNotOptimize(values.data());
+    benchmark::ClobberMemory();
+  }
+  state.SetItemsProcessed(state.iterations() * static_cast<long>(item_count));
+  state.counters["threads"] = threads;
+}
+
+// Two arrays of cache_bytes each, a[i] = a[i] / 2 + b[i] then b[i] = b[i] / 2 + a[i] over each
+// thread's half; `swapped`: the halves change threads every pass.
+void cache_halves(benchmark::State& state, bool swapped) {
+  constexpr std::size_t cache_bytes = std::size_t{1} << 20;
+  const int threads = static_cast<int>(state.range(0));
+  const long n = static_cast<long>(cache_bytes / sizeof(double));
+  std::vector<double> a(static_cast<std::size_t>(n), 1.0), b(static_cast<std::size_t>(n), 2.0);
+  long pass = 0;
+  for (auto _ : state) {
+#if defined(_OPENMP)
+#pragma omp parallel num_threads(threads)
+#endif
+    {
+      int thread = 0;
+      int team = 1;
+#if defined(_OPENMP)
+      thread = omp_get_thread_num();
+      team = omp_get_num_threads();
+#endif
+      const long half = swapped ? (thread + pass) % team : thread;
+      const long first = n * half / team, last = n * (half + 1) / team;
+      double* const x = a.data();
+      double* const y = b.data();
+      for (long i = first; i < last; ++i) x[i] = 0.5 * x[i] + y[i];
+      for (long i = first; i < last; ++i) y[i] = 0.5 * y[i] + x[i];
+    }
+    ++pass;
+    benchmark::DoNotOptimize(a.data());
+    benchmark::ClobberMemory();
+  }
+  state.SetItemsProcessed(state.iterations() * n);
+  state.counters["threads"] = threads;
+}
+
 }  // namespace
 
+BENCHMARK_CAPTURE(cache_halves, own, false)
+    ->Name("host/cache_halves")
+    ->Arg(1)
+    ->Arg(2)
+    ->UseRealTime();
+BENCHMARK_CAPTURE(cache_halves, swapped, true)
+    ->Name("host/cache_halves_swapped")
+    ->Arg(1)
+    ->Arg(2)
+    ->UseRealTime();
 BENCHMARK(plain_loop)->Name("host/plain_loop")->Arg(1)->Arg(2)->UseRealTime();
+BENCHMARK(throughput_loop)->Name("host/throughput_loop")->Arg(1)->Arg(2)->UseRealTime();

@@ -100,27 +100,32 @@ BENCHMARK(full_step<shape::CubicBSpline>)
 // Polar against nonpolar: the cost of a Cosserat step (same particles, same scheme).
 BENCHMARK(full_step<shape::Linear, integrator::MUSL, continuum::Classical<material::MohrCoulomb<>>>)
     ->Name("step/linear/MUSL/mohr_coulomb")
+    ->Iterations(benchmarks::plastic_steps)
     ->Arg(1);
 // The 2D twins of the remaining 3D Mohr-Coulomb steps (step_3d.bench.cpp): two threads, and
 // the quadratic B-spline.
 BENCHMARK(full_step<shape::Linear, integrator::MUSL, continuum::Classical<material::MohrCoulomb<>>>)
     ->Name("step/linear/MUSL/mohr_coulomb")
+    ->Iterations(benchmarks::plastic_steps)
     ->Arg(2)
     ->UseRealTime();
 BENCHMARK(full_step<shape::QuadraticBSpline, integrator::MUSL,
                     continuum::Classical<material::MohrCoulomb<>>>)
     ->Name("step/quadratic_bspline/MUSL/mohr_coulomb")
+    ->Iterations(benchmarks::plastic_steps)
     ->Arg(1)
     ->Arg(2)
     ->UseRealTime();
 BENCHMARK(full_step<shape::Linear, integrator::MUSL,
                     continuum::Cosserat<material::CosseratDruckerPrager<>>>)
     ->Name("step/linear/MUSL/cosserat_drucker_prager")
+    ->Iterations(benchmarks::plastic_steps)
     ->Arg(1);
 // Its two-thread twin (issue 17's scaling target covers every step).
 BENCHMARK(full_step<shape::Linear, integrator::MUSL,
                     continuum::Cosserat<material::CosseratDruckerPrager<>>>)
     ->Name("step/linear/MUSL/cosserat_drucker_prager")
+    ->Iterations(benchmarks::plastic_steps)
     ->Arg(2)
     ->UseRealTime();
 BENCHMARK(

@@ -79,33 +79,82 @@ Sim soil_block(const grid::Grid<Sim::dim>& grid, const Vec<Sim::dim>& fill, int 
   return sim;
 }
 
-// items_per_second (particle-steps per second, from the timed loop's iterations) and the
-// counters: the particles, the threads and the fraction of particles whose last update was
-// plastic (the cost of a Mohr-Coulomb step depends on it, in 3D by the eigenproblem of each
-// plastic point; 0 for an elastic model). Every benchmark sets the same counters: Google
-// Benchmark's CSV output, which scripts/bench_interleaved.sh reads, aborts when a run has a
-// counter that the first run reported lacked, and random interleaving puts any one first.
+// Whether a model's points can return plastically (its state is a PlasticState).
+template <class Model>
+inline constexpr bool has_plastic_state =
+    std::is_same_v<typename Model::state_type, material::PlasticState>;
+
+// The fraction of the particles whose last update was plastic.
 template <class Sim>
-void report_counters(benchmark::State& state, const Sim& sim) {
+double plastic_fraction(const Sim& sim) {
+  using Model = typename Sim::model_type;
+  if constexpr (has_plastic_state<Model>) {
+    const auto& states = sim.particles().template get<particles::field::MaterialState<Model>>();
+    double plastic = 0.0;
+    for (const auto& s : states) plastic += s.plastic;
+    return plastic / static_cast<double>(states.size());
+  } else {
+    return 0.0;
+  }
+}
+
+// items_per_second (particle-steps per second, from the timed loop's iterations) and the
+// counters: the particles, the threads and the fraction of plastic points (`plastic`; 0 for
+// an elastic model). Every benchmark sets the same counters: Google Benchmark's CSV output,
+// which scripts/bench_interleaved.sh reads, aborts when a run has a counter that the first run
+// reported lacked, and random interleaving puts any one first.
+template <class Sim>
+void report_counters(benchmark::State& state, const Sim& sim, double plastic) {
   const Index count = sim.particles().size();
   state.SetItemsProcessed(state.iterations() * count);
   state.counters["particles"] = static_cast<double>(count);
   state.counters["threads"] = static_cast<double>(sim.threads());
-  using Model = typename Sim::model_type;
-  double plastic = 0.0;
-  if constexpr (std::is_same_v<typename Model::state_type, material::PlasticState>) {
-    const auto& states = sim.particles().template get<particles::field::MaterialState<Model>>();
-    for (Index p = 0; p < count; ++p) plastic += states[p].plastic;
-  }
-  state.counters["plastic_fraction"] = plastic / static_cast<double>(count);
+  state.counters["plastic_fraction"] = plastic;
+}
+// The same with the last step's plastic fraction.
+template <class Sim>
+void report_counters(benchmark::State& state, const Sim& sim) {
+  report_counters(state, sim, plastic_fraction(sim));
 }
 
-// Full steps of the stable size, timed, and their counters.
+// How many steps a plastic model's step benchmark times, all from the soil block's start.
+// Why a fixed number: a plastic step costs more the more of its points return, and in the
+// block that fraction swings between 0 and 1 from step to step as stress waves cross it
+// (layer by layer: the block is uniform along x). Its mean over the first n steps falls with
+// n: Mohr-Coulomb 0.97 over 100 steps, 0.25 over 1000, 0.10 over 3000; Cosserat
+// Drucker-Prager 0.96, 0.47, 0.27 (2D, linear, MUSL). A benchmark that ran as many steps as
+// fit into its minimum time timed a mix that depended on its own speed: a faster build ran
+// more steps, fewer of them plastic, and looked faster still. Registered with
+// ->Iterations(plastic_steps), every build times the same steps, and plastic_fraction is the
+// mean over them.
+inline constexpr int plastic_steps = 1000;
+
+// Full steps of the stable size, timed, and their counters. A plastic model's benchmark must
+// be registered with ->Iterations(plastic_steps) (see there); the count of plastic points after
+// each step is taken with the timer paused (about a microsecond against a step of 0.5 ms or
+// more).
 template <class Sim>
 void time_full_steps(benchmark::State& state, Sim& sim) {
   const double dt = sim.time_step();
-  for (auto _ : state) sim.step(dt);
-  report_counters(state, sim);
+  if constexpr (has_plastic_state<typename Sim::model_type>) {
+    if (state.max_iterations != plastic_steps) {
+      state.SkipWithError(
+          "a plastic model's step benchmark times a fixed sequence: register it "
+          "with ->Iterations(benchmarks::plastic_steps)");
+      return;
+    }
+    double plastic = 0.0;
+    for (auto _ : state) {
+      sim.step(dt);
+      state.PauseTiming();
+      plastic += plastic_fraction(sim);
+      state.ResumeTiming();
+    }
+    report_counters(state, sim, plastic / static_cast<double>(state.iterations()));
+  } else {
+    for (auto _ : state) sim.step(dt);
+    report_counters(state, sim);
+  }
 }
 
 }  // namespace cosmpm::benchmarks

@@ -5,6 +5,8 @@
 // independently tested full tensor-product stencil; tolerance 1e-12 relative (summation order).
 #include <doctest/doctest.h>
 
+#include <algorithm>
+#include <array>
 #include <cmath>
 #include <vector>
 
@@ -160,4 +162,71 @@ TEST_CASE("blocks: a particle moved outside the grid by hand is an error, also o
     // Thrown after the parallel scatter, not from inside it (which would end the program).
     CHECK_THROWS_WITH_AS(sim.step(dt), doctest::Contains("outside the valid range"), Error);
   }
+}
+
+TEST_CASE("blocks: two threads share every colour's particles equally, each in whole blocks") {
+  // 200 x 12 cells: 13 x 3 blocks of 16 x 4 cells. Particles dense on the left (a 6 x 6
+  // lattice per cell over the first 40 cells) and sparse beyond (one per cell), so equal runs
+  // of blocks would hold very different numbers of particles.
+  const grid::Grid<2> grid(Vec<2>(0.0, 0.0), Vec<2>(2.0, 0.12), {200, 12});
+  std::vector<Vec<2>> x;
+  for (int i = 0; i < 200; ++i) {
+    for (int j = 0; j < 12; ++j) {
+      const int per_axis = i < 40 ? 6 : 1;
+      for (int a = 0; a < per_axis; ++a) {
+        for (int b = 0; b < per_axis; ++b) {
+          x.emplace_back(0.01 * (i + (a + 0.5) / per_axis), 0.01 * (j + (b + 0.5) / per_axis));
+        }
+      }
+    }
+  }
+  const auto count = static_cast<Index>(x.size());
+  REQUIRE(count >= cosmpm::parallel_threshold);
+  BlockScheduler<2, shape::Linear> blocks(grid);
+  blocks.bucket(x, count, shape::StencilGrid<2>(grid));
+  std::vector<int> visits(x.size(), 0), thread(x.size(), -1);
+  blocks.for_each_coloured(2, count, [&](Index p) {
+    ++visits[static_cast<std::size_t>(p)];
+    thread[static_cast<std::size_t>(p)] = cosmpm::current_thread();
+  });
+  for (const int v : visits) REQUIRE(v == 1);
+  // Per colour (block parities) and thread: particles, and the blocks each thread ran.
+  const auto block_of = [](const Vec<2>& p) {
+    return std::array<int, 2>{static_cast<int>(p[0] / 0.16), static_cast<int>(p[1] / 0.04)};
+  };
+  std::array<std::array<Index, 2>, 4> particles{};
+  std::array<std::array<std::vector<int>, 2>, 4> block_index;  // the blocks a thread ran
+  std::array<Index, 4> largest{};                              // the largest block of each colour
+  std::vector<Index> block_count(13 * 3, 0);
+  for (std::size_t p = 0; p < x.size(); ++p) {
+    const auto [bx, by] = block_of(x[p]);
+    ++block_count[static_cast<std::size_t>(by * 13 + bx)];
+  }
+  for (std::size_t p = 0; p < x.size(); ++p) {
+    const auto [bx, by] = block_of(x[p]);
+    const int colour = (bx & 1) | ((by & 1) << 1);
+    const auto c = static_cast<std::size_t>(colour);
+    const auto t = static_cast<std::size_t>(thread[p] < 0 ? 0 : thread[p]);
+    ++particles[c][t];
+    block_index[c][t].push_back(by * 13 + bx);
+    largest[c] = std::max(largest[c], block_count[static_cast<std::size_t>(by * 13 + bx)]);
+  }
+#if defined(_OPENMP)
+  CHECK(blocks.last_team_size() == 2);
+  for (std::size_t c = 0; c < 4; ++c) {
+    CAPTURE(c);
+    // The cut falls at a block boundary: the shares differ by at most one block.
+    CHECK(std::abs(particles[c][0] - particles[c][1]) <= largest[c]);
+    // Thread 0 runs the colour's first blocks (in block order), thread 1 the rest.
+    const auto [low0, high0] =
+        std::minmax_element(block_index[c][0].begin(), block_index[c][0].end());
+    const auto [low1, high1] =
+        std::minmax_element(block_index[c][1].begin(), block_index[c][1].end());
+    REQUIRE(!block_index[c][0].empty());
+    REQUIRE(!block_index[c][1].empty());
+    CHECK(*high0 < *low1);
+    (void)low0;
+    (void)high1;
+  }
+#endif
 }

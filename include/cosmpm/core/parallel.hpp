@@ -5,29 +5,27 @@
 #define COSMPM_PRAGMA(x) _Pragma(#x)
 // Loops over fewer than cosmpm::parallel_threshold items run on one thread: a team's
 // start-up and barrier cost more than they save, and far more on a loaded machine.
-// Iterations are handed out in chunks as threads come free (dynamic), not split in equal
-// halves up front: on a shared machine one core can run at half the speed of the other,
-// and with equal halves the slow one sets the time. On this VM that made two threads no
-// faster than one (measured on a plain parallel loop). Every loop this macro serves has
-// independent iterations, so results do not depend on which thread ran which chunk.
-#define COSMPM_OMP_PARALLEL_FOR(threads, work, chunk)                                        \
-  COSMPM_PRAGMA(omp parallel for schedule(dynamic, chunk) num_threads(threads) if ((work) >= \
-                                                                               cosmpm::parallel_threshold))
+// Iterations are split in equal contiguous parts, thread t always taking the t-th (OpenMP
+// `schedule(static)`), so a thread touches the same particles and nodes in every pass of a
+// step and of the next one: on this VM a cache line written on one vCPU and read on the other
+// costs about twice a line read where it was written, and handing out chunks as threads come
+// free (`schedule(dynamic)`, used up to 2026-12-03) moved most of the step's data between them
+// every pass, so that two threads ran the step slower than one (docs/performance.md, "Two
+// threads and the host"). Every loop these macros serve has independent iterations, so
+// results do not depend on which thread ran which part.
+#define COSMPM_OMP_PARALLEL_FOR(threads, work)                                       \
+  COSMPM_PRAGMA(omp parallel for schedule(static) num_threads(threads) if ((work) >= \
+                                                                         cosmpm::parallel_threshold))
 // The same loop with thread-private copies of the listed Index variables, combined by min at
 // the end: each thread records the first particle that failed a check in a register, with
 // no lock and no call inside the loop (a call there makes the compiler reload every array
 // pointer per particle).
-#define COSMPM_OMP_PARALLEL_FOR_MIN(threads, work, chunk, ...)                               \
-  COSMPM_PRAGMA(omp parallel for schedule(dynamic, chunk) num_threads(threads) if ((work) >= \
-                                                                               cosmpm::parallel_threshold) reduction(min : __VA_ARGS__))
-// The same loop with the reduction clauses given, e.g. reduction(min : a) reduction(max : b).
-#define COSMPM_OMP_PARALLEL_FOR_REDUCE(threads, work, chunk, ...)                            \
-  COSMPM_PRAGMA(omp parallel for schedule(dynamic, chunk) num_threads(threads) if ((work) >= \
-                                                                               cosmpm::parallel_threshold) __VA_ARGS__)
+#define COSMPM_OMP_PARALLEL_FOR_MIN(threads, work, ...)                              \
+  COSMPM_PRAGMA(omp parallel for schedule(static) num_threads(threads) if ((work) >= \
+                                                                         cosmpm::parallel_threshold) reduction(min : __VA_ARGS__))
 #else
-#define COSMPM_OMP_PARALLEL_FOR(threads, work, chunk)
-#define COSMPM_OMP_PARALLEL_FOR_MIN(threads, work, chunk, ...)
-#define COSMPM_OMP_PARALLEL_FOR_REDUCE(threads, work, chunk, ...)
+#define COSMPM_OMP_PARALLEL_FOR(threads, work)
+#define COSMPM_OMP_PARALLEL_FOR_MIN(threads, work, ...)
 #endif
 
 namespace cosmpm {
@@ -50,6 +48,15 @@ inline int current_team_size() {
   return omp_get_num_threads();
 #else
   return 1;
+#endif
+}
+
+// The calling thread's number in its team (0 outside a parallel region or without OpenMP).
+inline int current_thread() {
+#if defined(_OPENMP)
+  return omp_get_thread_num();
+#else
+  return 0;
 #endif
 }
 

@@ -93,6 +93,11 @@ class BlockScheduler {
   // Returns the first particle whose visit reported an invalid stencil and the first
   // misplaced one (`count` for none); f may also return nothing. Also notes the largest team
   // of threads that ran a colour (last_team_size()).
+  // One team runs the colours one after another, a barrier between them. Thread t takes the
+  // t-th of `team` contiguous runs of each colour's blocks, the runs cut where the colour's
+  // particles are shared equally, so a thread scatters the same region of the grid (and, with
+  // particles indexed in seeding order, about the particles its static share of the particle
+  // loops holds) in every colour and every step.
   template <class F>
   std::array<Index, 2> for_each_coloured([[maybe_unused]] int threads, Index count, F&& f) {
     const Index* start = block_start_.data();
@@ -100,28 +105,35 @@ class BlockScheduler {
     Index first_invalid = count;
     Index first_misplaced = count;
     int team = 1;
-    for (const auto& blocks : colour_blocks_) {
-      const Index block_count = static_cast<Index>(blocks.size());
-      const Index* block_list = blocks.data();
-      COSMPM_OMP_PARALLEL_FOR_REDUCE(threads, count, 1,
-                                     reduction(min
-                                               : first_invalid, first_misplaced) reduction(max
-                                                                                           : team))
-      for (Index b = 0; b < block_count; ++b) {
-        team = std::max(team, current_team_size());
-        const Index block = block_list[b];
-        for (Index i = start[block]; i < start[block + 1]; ++i) {
-          const Index p = order[i];
-          if constexpr (std::is_void_v<std::invoke_result_t<F&, Index>>) {
-            f(p);
-          } else {
-            const Visit visit = f(p);
-            if (visit == Visit::invalid_stencil) [[unlikely]]
-              first_invalid = std::min(first_invalid, p);
-            if (visit == Visit::misplaced) [[unlikely]]
-              first_misplaced = std::min(first_misplaced, p);
+#if defined(_OPENMP)
+#pragma omp parallel num_threads(threads) if (count >= cosmpm::parallel_threshold) \
+    reduction(min                                                                  \
+              : first_invalid, first_misplaced) reduction(max                      \
+                                                          : team)
+#endif
+    {
+      const int thread = current_thread();
+      team = current_team_size();
+      for (const auto& blocks : colour_blocks_) {
+        const auto [first, last] = share_of(blocks, thread, team);
+        for (Index b = first; b < last; ++b) {
+          const Index block = blocks[static_cast<std::size_t>(b)];
+          for (Index i = start[block]; i < start[block + 1]; ++i) {
+            const Index p = order[i];
+            if constexpr (std::is_void_v<std::invoke_result_t<F&, Index>>) {
+              f(p);
+            } else {
+              const Visit visit = f(p);
+              if (visit == Visit::invalid_stencil) [[unlikely]]
+                first_invalid = std::min(first_invalid, p);
+              if (visit == Visit::misplaced) [[unlikely]]
+                first_misplaced = std::min(first_misplaced, p);
+            }
           }
         }
+#if defined(_OPENMP)
+#pragma omp barrier
+#endif
       }
     }
     last_team_size_ = team;
@@ -130,7 +142,9 @@ class BlockScheduler {
 
   // Threads that ran the last coloured pass (1 when it ran serially): lets a test check that
   // the parallel path it means to exercise actually ran.
-  int last_team_size() const { return last_team_size_; }
+  int last_team_size() const {
+    return last_team_size_;
+  }
 
  private:
   template <class Positions>
@@ -147,6 +161,32 @@ class BlockScheduler {
       }
       particle_block_[p] = lookup().block_of_cell(cell);
     }
+  }
+
+  // Blocks [first, last) of a colour's list for thread `thread` of `team`: the t-th run when
+  // the list is cut into `team` contiguous runs of about equal particle counts (a run ends at
+  // the first block whose cumulative count reaches (t + 1) / team of the colour's particles).
+  std::array<Index, 2> share_of(const std::vector<Index>& blocks, int thread, int team) const {
+    const auto size = static_cast<Index>(blocks.size());
+    if (team == 1) return {0, size};
+    Index total = 0;
+    for (const Index block : blocks) total += block_start_[block + 1] - block_start_[block];
+    // The run of thread k ends after the block that takes the cumulative count to
+    // ceil(total (k + 1) / team): thread k's run is (end of k - 1, end of k].
+    const auto end_of = [&](int k) {
+      if (k < 0) return Index{0};
+      if (k + 1 >= team) return size;
+      const Index target = (total * (k + 1) + team - 1) / team;
+      Index sum = 0;
+      Index b = 0;
+      while (b < size && sum < target) {
+        sum += block_start_[blocks[static_cast<std::size_t>(b)] + 1] -
+               block_start_[blocks[static_cast<std::size_t>(b)]];
+        ++b;
+      }
+      return b;
+    };
+    return {end_of(thread - 1), end_of(thread)};
   }
 
   // Counting sort by block; within a block particles keep index order, so the order (and with

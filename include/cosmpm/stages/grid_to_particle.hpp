@@ -215,7 +215,7 @@ void map_to_particles(State& s, double dt) {
   // pack_width particles at a time, then the rest one by one.
   constexpr int W = pack_width;
   const Index packs = count / W;
-  COSMPM_OMP_PARALLEL_FOR_MIN(s.threads, count, 128, first_outside, first_bad, first_moved)
+  COSMPM_OMP_PARALLEL_FOR_MIN(s.threads, count, first_outside, first_bad, first_moved)
   for (Index b = 0; b < packs; ++b) {
     map_from_grid<W, with_stress_update, update>(s, b * W, pass, first_outside, first_bad,
                                                  first_moved);

@@ -158,7 +158,7 @@ void update_grid(State& s, double dt) {
     // the trial velocity, and the impulse recorded at the end, start from a field that does
     // not penetrate. The correction is not an acceleration: FLIP particles do not receive it.
     grid_velocity_from_momentum(s, dt);
-    COSMPM_OMP_PARALLEL_FOR(s.threads, count, 512)
+    COSMPM_OMP_PARALLEL_FOR(s.threads, count)
     for (Index n = 0; n < count; ++n) {
       if (nodes.mass[n] <= empty) {
         clear_empty_node(n);
@@ -167,7 +167,7 @@ void update_grid(State& s, double dt) {
       update_node(n, 1.0 / nodes.mass[n], Vec<Dim>(nodes.momentum[n]), /*spin_is_rate=*/true);
     }
   } else {
-    COSMPM_OMP_PARALLEL_FOR(s.threads, count, 512)
+    COSMPM_OMP_PARALLEL_FOR(s.threads, count)
     for (Index n = 0; n < count; ++n) {
       const double m = nodes.mass[n];
       if (m <= empty) {
@@ -187,7 +187,7 @@ void update_grid(State& s, double dt) {
   s.gather.resize(static_cast<std::size_t>(Record::all * count));
   double* const gathered = s.gather.data();
   const double inverse_dt = 1.0 / dt;
-  COSMPM_OMP_PARALLEL_FOR(s.threads, count, 512)
+  COSMPM_OMP_PARALLEL_FOR(s.threads, count)
   for (Index n = 0; n < count; ++n) {
     nodes.acceleration[n] = (nodes.velocity[n] - nodes.momentum[n]) * inverse_dt;
     double* const record = gathered + n * Record::all;

@@ -163,7 +163,7 @@ void velocity_gradient_from_grid(State& s, const std::vector<Vec<State::dim>>& n
   // pack_width particles at a time, then the rest one by one.
   constexpr int W = pack_width;
   const Index packs = count / W;
-  COSMPM_OMP_PARALLEL_FOR(s.threads, count, 64)
+  COSMPM_OMP_PARALLEL_FOR(s.threads, count)
   for (Index b = 0; b < packs; ++b) detail::rates_from_grid<W>(s, b * W, stencil_grid, records);
   for (Index p = packs * W; p < count; ++p) detail::rates_from_grid<1>(s, p, stencil_grid, records);
 }
@@ -242,7 +242,7 @@ void update_stress(State& s, double dt) {
   constexpr Index run = 64;
   const Index runs = (count + run - 1) / run;
   Index first_bad = count;
-  COSMPM_OMP_PARALLEL_FOR_MIN(s.threads, count, 4, first_bad)
+  COSMPM_OMP_PARALLEL_FOR_MIN(s.threads, count, first_bad)
   for (Index r = 0; r < runs; ++r) {
     const Index begin = r * run;
     const Index size = std::min(run, count - begin);
