@@ -5,14 +5,14 @@ On this shared VM whether two threads can scale at all changes from minute to mi
 host sometimes runs the two vCPUs where data moved between them costs twice as much, or on
 one core (docs/performance.md, "Two threads and the host"). A two-thread figure therefore
 means something about our code only beside a control measured in the same minute. Each round
-runs host/throughput_loop and host/plain_loop (benchmarks/host/scaling.bench.cpp) on one and
-two threads, then every selected step benchmark on one and two threads, all unpinned with
+runs the host controls (benchmarks/host/scaling.bench.cpp: throughput_loop, plain_loop,
+cache_halves and cache_halves_swapped) on one and two threads, then every selected step benchmark on one and two threads, all unpinned with
 OpenMP's default wait policy; the scaling of a benchmark is its two-thread items_per_second
 over its one-thread figure. Printed: every round, then per benchmark the median scaling over
 all rounds and over the rounds in which the throughput control scaled by at least --control.
 
 usage: scripts/bench_scaling.py [--rounds 5] [--control 1.8]
-           [--filter 'step/linear/(USL|MUSL/mohr_coulomb|MUSL/cosserat_drucker_prager)/']
+           [--filter 'step/linear/(USL|MUSL/mohr_coulomb|MUSL/cosserat_drucker_prager)/[12]/']
            [--build build/release]
 """
 import argparse
