@@ -1,6 +1,7 @@
 // Full explicit step and its stages on a 2D elastic block of about 17,000 particles
-// (1.2 m x 0.35 m at 10 mm cells, 2 x 2 particles per cell), the reference size.
-// items_per_second is particle-steps per second.
+// (1.2 m x 0.35 m at 10 mm cells, 2 x 2 particles per cell), the reference size, and
+// (step_long/) on the same block 40 times as long. items_per_second is particle-steps per
+// second.
 #include <benchmark/benchmark.h>
 
 #include <optional>
@@ -33,6 +34,18 @@ template <class Kernel, class Scheme = integrator::USL,
           class Continuum = continuum::Classical<Elastic>, class Transfer = transfer::FlipBlend>
 void full_step(benchmark::State& state) {
   auto sim = make_block<Kernel, Scheme, Continuum, Transfer>(static_cast<int>(state.range(0)));
+  benchmarks::time_full_steps(state, sim);
+}
+
+// The same block 40 times as long (4800 x 50 cells, 672,000 particles, about 300 MB of
+// particle data): the step when the particles no longer fit in the processor's caches.
+template <class Scheme>
+void full_step_long(benchmark::State& state) {
+  using Sim =
+      Simulation<2, shape::Linear, continuum::Classical<Elastic>, contact::SingleField, Scheme>;
+  const grid::Grid<2> grid(Vec<2>(0.0, 0.0), Vec<2>(48.0, 0.5), {4800, 50});
+  auto sim =
+      benchmarks::soil_block<Sim>(grid, Vec<2>(48.0, 0.35), static_cast<int>(state.range(0)));
   benchmarks::time_full_steps(state, sim);
 }
 
@@ -142,3 +155,43 @@ BENCHMARK(stage_map_to_grid)->Name("stage/linear/map_to_grid");
 BENCHMARK(stage_update_grid)->Name("stage/linear/update_grid");
 BENCHMARK(stage_map_to_particles)->Name("stage/linear/map_to_particles");
 BENCHMARK(stage_stress_update)->Name("stage/linear/velocity_gradient+stress_update");
+// The fused schemes (integrator/fused.hpp): the same steps with one particle pass fewer.
+BENCHMARK(full_step<shape::Linear, integrator::FusedUSL>)
+    ->Name("step/linear/FusedUSL")
+    ->Arg(1)
+    ->Arg(2)
+    ->UseRealTime();
+BENCHMARK(full_step<shape::QuadraticBSpline, integrator::FusedUSL>)
+    ->Name("step/quadratic_bspline/FusedUSL")
+    ->Arg(1)
+    ->Arg(2)
+    ->UseRealTime();
+BENCHMARK(
+    full_step<shape::Linear, integrator::FusedMUSL, continuum::Classical<material::MohrCoulomb<>>>)
+    ->Name("step/linear/FusedMUSL/mohr_coulomb")
+    ->Iterations(benchmarks::plastic_steps)
+    ->Arg(1)
+    ->Arg(2)
+    ->UseRealTime();
+BENCHMARK(full_step<shape::Linear, integrator::FusedMUSL,
+                    continuum::Cosserat<material::CosseratDruckerPrager<>>>)
+    ->Name("step/linear/FusedMUSL/cosserat_drucker_prager")
+    ->Iterations(benchmarks::plastic_steps)
+    ->Arg(1)
+    ->Arg(2)
+    ->UseRealTime();
+BENCHMARK(full_step_long<integrator::USL>)
+    ->Name("step_long/linear/USL")
+    ->Arg(1)
+    ->Arg(2)
+    ->UseRealTime();
+BENCHMARK(full_step_long<integrator::FusedUSL>)
+    ->Name("step_long/linear/FusedUSL")
+    ->Arg(1)
+    ->Arg(2)
+    ->UseRealTime();
+BENCHMARK(full_step_long<integrator::MUSL>)->Name("step_long/linear/MUSL")->Arg(1)->UseRealTime();
+BENCHMARK(full_step_long<integrator::FusedMUSL>)
+    ->Name("step_long/linear/FusedMUSL")
+    ->Arg(1)
+    ->UseRealTime();

@@ -60,3 +60,15 @@ BENCHMARK(full_step_3d<shape::QuadraticBSpline, integrator::MUSL, MohrCoulomb3>)
     ->Arg(1)
     ->Arg(2)
     ->UseRealTime();
+// The fused schemes (integrator/fused.hpp) on the same block.
+BENCHMARK(full_step_3d<shape::Linear, integrator::FusedUSL, Elastic3>)
+    ->Name("step_3d/linear/FusedUSL")
+    ->Arg(1)
+    ->Arg(2)
+    ->UseRealTime();
+BENCHMARK(full_step_3d<shape::Linear, integrator::FusedMUSL, MohrCoulomb3>)
+    ->Name("step_3d/linear/FusedMUSL/mohr_coulomb")
+    ->Iterations(benchmarks::plastic_steps)
+    ->Arg(1)
+    ->Arg(2)
+    ->UseRealTime();

@@ -200,9 +200,10 @@ inline void declare_options(Options& o, Case& c) {
            "cosserat-drucker-prager");
   o.choice("shape", c.shape, {"linear", "gimp", "quadratic-bspline", "cubic-bspline"},
            "shape functions (linear: the paper's bilinear Q4)");
-  o.choice("integrator", c.integrator, {"musl", "usl", "usf"},
+  o.choice("integrator", c.integrator, {"musl", "usl", "usf", "fused-musl"},
            "update scheme (the paper: usl, which blows up at the blade's corner; see "
-           "docs/theory/mpm.md)");
+           "docs/theory/mpm.md); fused-musl: musl with the next step's particle-to-grid map in "
+           "its last particle pass (integrator/fused.hpp), equal to musl within rounding");
   o.choice("transfer", c.transfer, {"flip-blend", "apic"},
            "particle velocity transfer: flip-blend (PIC/FLIP by --flip) or apic (affine, not "
            "with --shape linear)");

@@ -5,11 +5,11 @@
 // side). The library stays free of run-time choices.
 //
 // Built in: the default method (linear shape functions, MUSL, PIC/FLIP, no anti-locking) with
-// each model; every shape function with MUSL; every integrator with linear shape functions: 6
-// per model; and for the nonpolar models APIC (quadratic B-splines, MUSL) and F-bar (linear,
-// MUSL): 22 in all. Each costs about 11 s of compile time (the example went from 24 to 215 s
-// of CPU with 18, docs/usage.md), so the full product is not built; another composition is
-// one line in CompositionsOf and one in a run_*.cpp file.
+// each model; every shape function with MUSL; every integrator with linear shape functions,
+// fused MUSL included: 7 per model; and for the nonpolar models APIC (quadratic B-splines, MUSL)
+// and F-bar (linear, MUSL): 25 in all. Each costs about 11 s of compile time (the example went from
+// 24 to 215 s of CPU with 18, docs/usage.md), so the full product is not built; another composition
+// is one line in CompositionsOf and one in a run_*.cpp file.
 #include <cstddef>
 #include <functional>
 #include <optional>
@@ -61,6 +61,7 @@ template <class Model>
 using CompositionsOf = std::variant<Composition<shape::Linear, integrator::MUSL, Model>,
                                     Composition<shape::Linear, integrator::USL, Model>,
                                     Composition<shape::Linear, integrator::USF, Model>,
+                                    Composition<shape::Linear, integrator::FusedMUSL, Model>,
                                     Composition<shape::GIMP, integrator::MUSL, Model>,
                                     Composition<shape::QuadraticBSpline, integrator::MUSL, Model>,
                                     Composition<shape::CubicBSpline, integrator::MUSL, Model>>;
@@ -88,6 +89,7 @@ constexpr const char* option_name() {
   if constexpr (std::is_same_v<T, integrator::USL>) return "usl";
   if constexpr (std::is_same_v<T, integrator::MUSL>) return "musl";
   if constexpr (std::is_same_v<T, integrator::USF>) return "usf";
+  if constexpr (std::is_same_v<T, integrator::FusedMUSL>) return "fused-musl";
   if constexpr (std::is_same_v<T, MohrCoulomb>) return "mohr-coulomb";
   if constexpr (std::is_same_v<T, DruckerPrager>) return "drucker-prager";
   if constexpr (std::is_same_v<T, CosseratDruckerPrager>) return "cosserat-drucker-prager";

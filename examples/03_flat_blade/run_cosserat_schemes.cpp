@@ -9,4 +9,6 @@ template Outcome run(const Case&, RunContext&,
                      Composition<shape::Linear, integrator::USL, CosseratDruckerPrager>);
 template Outcome run(const Case&, RunContext&,
                      Composition<shape::Linear, integrator::USF, CosseratDruckerPrager>);
+template Outcome run(const Case&, RunContext&,
+                     Composition<shape::Linear, integrator::FusedMUSL, CosseratDruckerPrager>);
 }  // namespace flat_blade

@@ -8,4 +8,6 @@ template Outcome run(const Case&, RunContext&,
                      Composition<shape::Linear, integrator::USL, DruckerPrager>);
 template Outcome run(const Case&, RunContext&,
                      Composition<shape::Linear, integrator::USF, DruckerPrager>);
+template Outcome run(const Case&, RunContext&,
+                     Composition<shape::Linear, integrator::FusedMUSL, DruckerPrager>);
 }  // namespace flat_blade

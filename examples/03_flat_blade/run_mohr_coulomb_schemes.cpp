@@ -8,4 +8,6 @@ template Outcome run(const Case&, RunContext&,
                      Composition<shape::Linear, integrator::USL, MohrCoulomb>);
 template Outcome run(const Case&, RunContext&,
                      Composition<shape::Linear, integrator::USF, MohrCoulomb>);
+template Outcome run(const Case&, RunContext&,
+                     Composition<shape::Linear, integrator::FusedMUSL, MohrCoulomb>);
 }  // namespace flat_blade

@@ -34,6 +34,7 @@
 #include "cosmpm/simulation/engine_state.hpp"
 #include "cosmpm/simulation/free_surface_checks.hpp"
 #include "cosmpm/simulation/parameters.hpp"
+#include "cosmpm/stages/fused_pass.hpp"
 #include "cosmpm/stages/grid_to_particle.hpp"
 #include "cosmpm/stages/grid_update.hpp"
 #include "cosmpm/stages/particle_to_grid.hpp"
@@ -112,6 +113,7 @@ class Simulation : detail::CompositionChecks<Dim, Kernel, Continuum, Contact, Sc
       }
     }
     auto& store = state_.particles;
+    state_.prescattered = false;
     const auto count = static_cast<Index>(positions.size());
     const Index first = store.append(count);
     namespace field = particles::field;
@@ -184,12 +186,26 @@ class Simulation : detail::CompositionChecks<Dim, Kernel, Continuum, Contact, Sc
   }
   // Constitutive update, deformation gradient and volume from those rates.
   void update_stress(double dt) { stages::update_stress(state_, dt); }
+  // Fused schemes (integrator/fused.hpp): map_to_grid(true), or the node fields from the
+  // records the last step's fused pass scattered while they are valid.
+  void map_to_grid_or_reuse() { stages::map_to_grid_or_reuse(state_); }
+  // Fused USL: map_to_particles(dt, true) and the next step's map_to_grid in one pass.
+  void map_to_particles_and_grid(double dt) { stages::map_to_particles_and_grid(state_, dt); }
+  // Fused MUSL: update_stress(dt) and the next step's map_to_grid in one pass.
+  void update_stress_and_map_to_grid(double dt) {
+    stages::update_stress_and_map_to_grid(state_, dt);
+  }
   // Particles that left the grid box leave the simulation (SimulationParameters::
   // stray_particles); step() calls it last.
   void handle_stray_particles() { stages::handle_stray_particles(state_); }
 
   // --- access -----------------------------------------------------------------------------
-  store_type& particles() { return state_.particles; }
+  // Taking the particles, the continuum or the engine for writing drops the records a fused
+  // scheme scattered for the next step (integrator/fused.hpp).
+  store_type& particles() {
+    state_.prescattered = false;
+    return state_.particles;
+  }
   const store_type& particles() const { return state_.particles; }
   const node_fields_type& nodes() const { return state_.nodes; }
   const grid::Grid<Dim>& grid() const { return state_.grid; }
@@ -199,7 +215,10 @@ class Simulation : detail::CompositionChecks<Dim, Kernel, Continuum, Contact, Sc
   Contact& contact() { return state_.contact; }
   const Contact& contact() const { return state_.contact; }
   // The continuum and its settings (Cosserat: micro-inertia, rotation conditions).
-  Continuum& continuum() { return state_.continuum; }
+  Continuum& continuum() {
+    state_.prescattered = false;
+    return state_.continuum;
+  }
   const Continuum& continuum() const { return state_.continuum; }
   const model_type& model() const { return state_.model(); }
   const SimulationParameters<Dim>& parameters() const { return state_.parameters; }
@@ -212,7 +231,10 @@ class Simulation : detail::CompositionChecks<Dim, Kernel, Continuum, Contact, Sc
   // Threads that ran the last coloured particle pass (1: serial).
   int last_team_size() const { return state_.blocks.last_team_size(); }
   // Everything the stages work on, for users who write stages of their own.
-  State& engine() { return state_; }
+  State& engine() {
+    state_.prescattered = false;
+    return state_;
+  }
   const State& engine() const { return state_; }
 
   // Local damping can change between phases (e.g. damped settling, then undamped cutting).

@@ -73,7 +73,13 @@ struct EngineState {
 
   // Shared by the stages of one step:
   std::vector<double> scatter;  // node records of the particle-to-grid maps
-  std::vector<double> gather;   // node records of the grid-to-particle maps
+  // The fused schemes' particle pass scattered the next step's records (stages/fused_pass.hpp);
+  // cleared by anything that writes the records or may have changed the particles since.
+  bool prescattered = false;
+  // Its second half's records, zero between passes, and the threads that ran it last.
+  std::vector<double> scatter_upper;
+  int fused_team = 1;
+  std::vector<double> gather;  // node records of the grid-to-particle maps
   // Particle positions in cell units at the last map_to_grid: the stencils of the step.
   std::vector<Vec<Dim>> stencil_cells;
   std::vector<rates_type> particle_rates;  // MUSL/USF: between rates and stress update

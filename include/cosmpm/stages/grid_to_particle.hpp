@@ -10,6 +10,7 @@
 // pack width.
 #include <array>
 #include <cmath>
+#include <utility>
 
 #include "cosmpm/core/compiler.hpp"
 #include "cosmpm/core/pack.hpp"
@@ -197,18 +198,42 @@ COSMPM_ALWAYS_INLINE void map_from_grid(State& s, Index p, const auto& pass, Ind
   }
 }
 
+template <class State>
+ParticleMapPass<State::dim, decltype(std::declval<State&>().blocks.lookup())> map_pass(State& s,
+                                                                                       double dt) {
+  return {dt,
+          s.parameters.flip_fraction_or_default(),
+          s.parameters.pic_where_separated,
+          s.gather.data(),
+          shape::StencilGrid<State::dim>(s.grid),
+          s.blocks.lookup()};
+}
+
+// After a grid-to-particle pass: particles that changed block are sorted again before the
+// next scatter; a particle outside the grid stops the run or becomes a stray; a bad stress
+// stops the run, naming its cause.
+template <class State>
+void finish_map(State& s, Index first_outside, Index first_bad, Index first_moved) {
+  constexpr int Dim = State::dim;
+  const Index count = s.particles.size();
+  if (first_moved < count) s.blocks.mark_changed();
+  // A particle that left the grid usually also tore its neighbourhood: name the cause.
+  if (first_outside < count) {
+    if (s.parameters.stray_particles == StrayParticles::stop) {
+      throw_outside<Dim>(s.particles, s.grid, first_outside, s.clock);
+    }
+    s.strays_pending = true;  // the rest of the step still maps them at their start stencils
+  }
+  if (first_bad < count) {
+    throw_unstable_stress<Dim, typename State::model_type>(s.particles, first_bad, s.clock);
+  }
+}
+
 template <bool with_stress_update, VelocityUpdate update, class State>
 void map_to_particles(State& s, double dt) {
-  constexpr int Dim = State::dim;
   require_start_stencils(s, "map_to_particles");
   const Index count = s.particles.size();
-  const ParticleMapPass<Dim, decltype(s.blocks.lookup())> pass{
-      dt,
-      s.parameters.flip_fraction_or_default(),
-      s.parameters.pic_where_separated,
-      s.gather.data(),
-      shape::StencilGrid<Dim>(s.grid),
-      s.blocks.lookup()};
+  const auto pass = map_pass(s, dt);
   Index first_outside = count;
   Index first_bad = count;
   Index first_moved = count;
@@ -223,16 +248,20 @@ void map_to_particles(State& s, double dt) {
   for (Index p = packs * W; p < count; ++p) {
     map_from_grid<1, with_stress_update, update>(s, p, pass, first_outside, first_bad, first_moved);
   }
-  if (first_moved < count) s.blocks.mark_changed();
-  // A particle that left the grid usually also tore its neighbourhood: name the cause.
-  if (first_outside < count) {
-    if (s.parameters.stray_particles == StrayParticles::stop) {
-      throw_outside<Dim>(s.particles, s.grid, first_outside, s.clock);
-    }
-    s.strays_pending = true;  // the rest of the step still maps them at their start stencils
-  }
-  if (first_bad < count) {
-    throw_unstable_stress<Dim, typename State::model_type>(s.particles, first_bad, s.clock);
+  finish_map(s, first_outside, first_bad, first_moved);
+}
+
+// Calls f.template operator()<update>() with the velocity update of the simulation's transfer
+// and FLIP fraction: pure FLIP (the default) is its own instantiation, its update needs no
+// blend.
+template <class State, class F>
+void with_velocity_update(const State& s, F&& f) {
+  if constexpr (State::transfer_type::affine) {
+    f.template operator()<VelocityUpdate::affine>();
+  } else if (s.parameters.flip_fraction_or_default() == 1.0) {
+    f.template operator()<VelocityUpdate::flip>();
+  } else {
+    f.template operator()<VelocityUpdate::blend>();
   }
 }
 
@@ -272,28 +301,22 @@ void handle_stray_particles(State& s) {
   s.strays.count_last_step = moved;
   s.strays.mass_last_step = stray_mass;
   // The step's per-particle buffers no longer match; the next map_to_grid rebuilds them.
+  s.prescattered = false;
   s.stencil_cells.clear();
   s.particle_rates.clear();
 }
 
-// Pure FLIP (the default) is its own instantiation: its update needs no blend.
+// Particle velocity and position from the grid; with_stress_update, also the stress update.
 template <class State>
 void map_to_particles(State& s, double dt, bool with_stress_update) {
   using detail::VelocityUpdate;
   // Averaging the volumetric rate over cells needs every particle's rate first: no fusion.
-  const bool fused = with_stress_update && !averages_volume<State>;
-  const auto run = [&]<VelocityUpdate update>() {
-    fused ? detail::map_to_particles<true, update>(s, dt)
-          : detail::map_to_particles<false, update>(s, dt);
-  };
-  if constexpr (State::transfer_type::affine) {
-    run.template operator()<VelocityUpdate::affine>();
-  } else if (s.parameters.flip_fraction_or_default() == 1.0) {
-    run.template operator()<VelocityUpdate::flip>();
-  } else {
-    run.template operator()<VelocityUpdate::blend>();
-  }
-  if (with_stress_update && !fused) {
+  const bool in_one_pass = with_stress_update && !averages_volume<State>;
+  detail::with_velocity_update(s, [&]<VelocityUpdate update>() {
+    in_one_pass ? detail::map_to_particles<true, update>(s, dt)
+                : detail::map_to_particles<false, update>(s, dt);
+  });
+  if (with_stress_update && !in_one_pass) {
     velocity_gradient_from_grid(s, s.nodes.velocity, s.nodes.spin);
     update_stress(s, dt);
   }

@@ -109,78 +109,118 @@ COSMPM_ALWAYS_INLINE Vec<State::dim> nodal_momentum(const State& s, Index n, con
 
 namespace detail {
 
+// The particle arrays a scatter reads, their addresses taken once per pass: the loops run
+// short of registers, and a pointer is one load where a vector is two.
+template <class State>
+struct ScatterSources {
+  static constexpr int dim = State::dim;
+  const Vec<dim>* x;
+  const Vec<dim>* v;
+  const double* mass;
+  const double* volume;
+  const Vec<dim>* half;
+  const typename State::model_type::stress_type* stress;
+  Vec<dim> gravity;
+};
+
+template <class State>
+ScatterSources<State> scatter_sources(const State& s) {
+  constexpr int Dim = State::dim;
+  using Model = typename State::model_type;
+  const auto& particles = s.particles;
+  return {particles.template get<particles::field::Position<Dim>>().data(),
+          particles.template get<particles::field::Velocity<Dim>>().data(),
+          particles.template get<particles::field::Mass>().data(),
+          particles.template get<particles::field::Volume>().data(),
+          particles.template get<particles::field::HalfWidth<Dim>>().data(),
+          particles.template get<particles::field::Stress<Model>>().data(),
+          s.parameters.gravity};
+}
+
+// Particle p's mass, momentum (and, with_forces, force) terms added to the node records at
+// its stencil st, whose position in cell units is x_in_cells.
+template <bool with_forces, class State>
+COSMPM_ALWAYS_INLINE void scatter_particle(const typename State::store_type& particles,
+                                           const ScatterSources<State>& from, Index p,
+                                           const typename State::stencil_type& st,
+                                           const Vec<State::dim>& x_in_cells,
+                                           const shape::StencilGrid<State::dim>& stencil_grid,
+                                           double* records) {
+  constexpr int Dim = State::dim;
+  constexpr int R = State::rotational_dofs;
+  using Record = typename State::scatter_record;
+  using Continuum = typename State::continuum_type;
+  constexpr int W = Record::weighted;
+  constexpr int C = with_forces ? Record::all : W;
+  const double mp = from.mass[p];
+  std::array<double, C> weighted;
+  std::array<std::array<double, Dim>, C - W> by_gradient;
+  weighted[Record::mass] = mp;
+  if constexpr (State::transfer_type::affine) {
+    momentum_terms<State>(particles, p, mp, from.v[p], st, x_in_cells, stencil_grid,
+                          weighted.data() + Record::momentum, weighted.data() + Record::affine);
+  } else {
+    (void)x_in_cells;
+    for (int d = 0; d < Dim; ++d) weighted[Record::momentum + d] = mp * from.v[p][d];
+  }
+  if constexpr (R > 0) {
+    const auto inertia = Continuum::rotational_inertia(particles, p, mp);
+    const auto spin = Continuum::rotational_velocity(particles, p);
+    for (int k = 0; k < R; ++k) {
+      weighted[Record::inertia + k] = inertia[k];
+      weighted[Record::spin_momentum + k] = inertia[k] * spin[k];
+    }
+  }
+  if constexpr (with_forces) {
+    force_contribution<State>(mp, from.volume[p], from.stress[p], from.gravity,
+                              weighted.data() + Record::force, by_gradient);
+  }
+  shape::scatter<W>(st, records, weighted, by_gradient);
+}
+
+// The node records of the particle-to-grid map, zeroed, sized for the grid.
+template <bool with_forces, class State>
+double* clear_scatter_records(State& s) {
+  using Record = typename State::scatter_record;
+  constexpr int C = with_forces ? Record::all : Record::weighted;
+  const Index nodes = s.grid.node_count();
+  s.scatter.resize(static_cast<std::size_t>(Record::all * nodes));
+  std::fill(s.scatter.begin(), s.scatter.begin() + C * nodes, 0.0);
+  s.prescattered = false;
+  return s.scatter.data();
+}
+
 // The particle-to-grid pass of map_to_grid into s.scatter. False (and nothing usable) if a
 // particle no longer lies in the block it was sorted into.
 template <bool with_forces, class State>
 bool scatter_particles(State& s) {
   constexpr int Dim = State::dim;
-  constexpr int R = State::rotational_dofs;
-  using Record = typename State::scatter_record;
-  using Continuum = typename State::continuum_type;
-  using Model = typename State::model_type;
-  constexpr int W = Record::weighted;
-  constexpr int C = with_forces ? Record::all : W;
-  const Index nodes = s.grid.node_count();
-  s.scatter.resize(static_cast<std::size_t>(Record::all * nodes));
-  std::fill(s.scatter.begin(), s.scatter.begin() + C * nodes, 0.0);
-  // Array addresses, captured by value below: the loop runs short of registers, and a
-  // pointer in the closure is one load where a captured vector is two.
+  double* const records = clear_scatter_records<with_forces>(s);
   const auto& particles = s.particles;
-  const auto* const x = particles.template get<particles::field::Position<Dim>>().data();
-  const auto* const v = particles.template get<particles::field::Velocity<Dim>>().data();
-  const double* const mass = particles.template get<particles::field::Mass>().data();
-  const double* const vol = particles.template get<particles::field::Volume>().data();
-  const auto* const half = particles.template get<particles::field::HalfWidth<Dim>>().data();
-  const auto* const stress = particles.template get<particles::field::Stress<Model>>().data();
+  const ScatterSources<State> from = scatter_sources(s);
+  const auto* const x = from.x;
+  const auto* const half = from.half;
   const auto blocks = s.blocks.lookup();
   const Index* const particle_block = blocks.particle_block;
-  const Vec<Dim> gravity = s.parameters.gravity;
   const Index count = particles.size();
   const shape::StencilGrid<Dim> stencil_grid(s.grid);
   s.stencil_cells.resize(static_cast<std::size_t>(count));
   Vec<Dim>* const stencil_cells = s.stencil_cells.data();
-  double* const records = s.scatter.data();
-  // Named outside the lambda: GCC 12 fails on C - W inside it.
-  using Weighted = std::array<double, C>;
-  using ByGradient = std::array<std::array<double, Dim>, C - W>;
   // Inlined into the block loop.
   const auto [first_invalid, first_misplaced] = s.blocks.for_each_coloured(
       s.threads, count,
-      [&, x, v, mass, vol, half, stress, particle_block, stencil_cells, records](Index p)
-          COSMPM_INLINE_LAMBDA {
-            typename State::stencil_type st;
-            // Reported after the (possibly parallel) loop.
-            if (!st.try_compute(stencil_grid, x[p], half[p])) [[unlikely]]
-              return Visit::invalid_stencil;
-            if (blocks.block_of_cell(st.cell) != particle_block[p]) [[unlikely]]
-              return Visit::misplaced;
-            for (int d = 0; d < Dim; ++d) stencil_cells[p][d] = st.position_in_cells[d];
-            const double mp = mass[p];
-            Weighted weighted;
-            ByGradient by_gradient;
-            weighted[Record::mass] = mp;
-            if constexpr (State::transfer_type::affine) {
-              momentum_terms<State>(particles, p, mp, v[p], st, stencil_cells[p], stencil_grid,
-                                    weighted.data() + Record::momentum,
-                                    weighted.data() + Record::affine);
-            } else {
-              for (int d = 0; d < Dim; ++d) weighted[Record::momentum + d] = mp * v[p][d];
-            }
-            if constexpr (R > 0) {
-              const auto inertia = Continuum::rotational_inertia(particles, p, mp);
-              const auto spin = Continuum::rotational_velocity(particles, p);
-              for (int k = 0; k < R; ++k) {
-                weighted[Record::inertia + k] = inertia[k];
-                weighted[Record::spin_momentum + k] = inertia[k] * spin[k];
-              }
-            }
-            if constexpr (with_forces) {
-              force_contribution<State>(mp, vol[p], stress[p], gravity,
-                                        weighted.data() + Record::force, by_gradient);
-            }
-            shape::scatter<W>(st, records, weighted, by_gradient);
-            return Visit::done;
-          });
+      [&, x, half, particle_block, stencil_cells, records](Index p) COSMPM_INLINE_LAMBDA {
+        typename State::stencil_type st;
+        // Reported after the (possibly parallel) loop.
+        if (!st.try_compute(stencil_grid, x[p], half[p])) [[unlikely]]
+          return Visit::invalid_stencil;
+        if (blocks.block_of_cell(st.cell) != particle_block[p]) [[unlikely]]
+          return Visit::misplaced;
+        for (int d = 0; d < Dim; ++d) stencil_cells[p][d] = st.position_in_cells[d];
+        scatter_particle<with_forces, State>(particles, from, p, st, stencil_cells[p], stencil_grid,
+                                             records);
+        return Visit::done;
+      });
   if (first_invalid < count) {
     typename State::stencil_type st;
     st.compute(stencil_grid, x[first_invalid], half[first_invalid]);  // throws, naming it
@@ -190,25 +230,13 @@ bool scatter_particles(State& s) {
 
 }  // namespace detail
 
-// Particle mass and momentum (and, with_forces, internal and external forces) to the nodes.
-// Buckets particles into coloured blocks first.
+// The node fields from the records of the particle-to-grid map (mass, momentum and, with
+// forces, force and moments).
 template <class State>
-void map_to_grid(State& s, bool with_forces) {
+void nodes_from_records(State& s, bool with_forces) {
   constexpr int Dim = State::dim;
   constexpr int R = State::rotational_dofs;
   using Record = typename State::scatter_record;
-  const auto& x = s.particles.template get<particles::field::Position<Dim>>();
-  const shape::StencilGrid<Dim> stencil_grid(s.grid);
-  s.blocks.bucket(x, s.particles.size(), stencil_grid);
-  const auto scatter = [&] {
-    return with_forces ? detail::scatter_particles<true>(s) : detail::scatter_particles<false>(s);
-  };
-  if (!scatter()) {
-    // Particles were moved outside the engine since the last step (e.g. by the user): the
-    // blocks no longer keep same-colour scatters apart. Sort again and redo.
-    s.blocks.resort(x, s.particles.size(), stencil_grid);
-    require(scatter(), "Simulation::map_to_grid: particle blocks inconsistent after sorting");
-  }
   // A grid distributed over several processes would sum the records of the nodes its
   // neighbours share here (halo exchange), before any node pass reads them.
   const Index count = s.grid.node_count();
@@ -234,6 +262,26 @@ void map_to_grid(State& s, bool with_forces) {
   }
 }
 
+// Particle mass and momentum (and, with_forces, internal and external forces) to the nodes.
+// Buckets particles into coloured blocks first.
+template <class State>
+void map_to_grid(State& s, bool with_forces) {
+  constexpr int Dim = State::dim;
+  const auto& x = s.particles.template get<particles::field::Position<Dim>>();
+  const shape::StencilGrid<Dim> stencil_grid(s.grid);
+  s.blocks.bucket(x, s.particles.size(), stencil_grid);
+  const auto scatter = [&] {
+    return with_forces ? detail::scatter_particles<true>(s) : detail::scatter_particles<false>(s);
+  };
+  if (!scatter()) {
+    // Particles were moved outside the engine since the last step (e.g. by the user): the
+    // blocks no longer keep same-colour scatters apart. Sort again and redo.
+    s.blocks.resort(x, s.particles.size(), stencil_grid);
+    require(scatter(), "Simulation::map_to_grid: particle blocks inconsistent after sorting");
+  }
+  nodes_from_records(s, with_forces);
+}
+
 // USF only: forces after the stress update (mass and momentum are already on the grid, and
 // grid_velocity_from_momentum turned the momenta into velocities: they are restored).
 template <class State>
@@ -250,6 +298,7 @@ void map_forces_to_grid(State& s) {
   }
   constexpr int forces = Dim + R;
   s.scatter.resize(std::max(s.scatter.size(), static_cast<std::size_t>(forces * count)));
+  s.prescattered = false;
   std::fill(s.scatter.begin(), s.scatter.begin() + forces * count, 0.0);
   require_start_stencils(s, "map_forces_to_grid");
   const auto& mass = s.particles.template get<particles::field::Mass>();
@@ -288,6 +337,7 @@ void remap_momentum(State& s, double dt) {
   constexpr int affine = State::affine_terms;  // after the rotational momenta
   constexpr int momenta = Dim + R + affine;
   s.scatter.resize(std::max(s.scatter.size(), static_cast<std::size_t>(momenta * count)));
+  s.prescattered = false;
   std::fill(s.scatter.begin(), s.scatter.begin() + momenta * count, 0.0);
   const shape::StencilGrid<Dim> stencil_grid(s.grid);
   double* const records = s.scatter.data();

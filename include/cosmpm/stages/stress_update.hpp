@@ -222,51 +222,68 @@ void average_volumetric_rate(State& s) {
   }
 }
 
+namespace detail {
+// Stage 4b for particles begin, ..., begin + size - 1 (size <= update_run), one call of the
+// model's batch update; notes the first whose stress or volume came out bad.
+inline constexpr Index update_run = 64;
+
+template <class State>
+COSMPM_ALWAYS_INLINE void update_stress_run(State& s, Index begin, Index size, double dt,
+                                            Index& first_bad) {
+  constexpr int Dim = State::dim;
+  using Model = typename State::model_type;
+  using Continuum = typename State::continuum_type;
+  using strain_type = typename Model::strain_type;
+  auto& stress = s.particles.template get<particles::field::Stress<Model>>();
+  auto& state = s.particles.template get<particles::field::MaterialState<Model>>();
+  auto& strain = s.particles.template get<particles::field::Strain<Model>>();
+  const auto points = static_cast<std::size_t>(size);
+  std::array<strain_type, update_run> increment;
+  for (Index k = 0; k < size; ++k) {
+    increment[k] =
+        Continuum::rotate_and_increment(s.particle_rates[begin + k], dt, stress[begin + k]);
+  }
+  material::update_batch(s.model(), std::span(stress.data() + begin, points),
+                         std::span(state.data() + begin, points),
+                         std::span<const strain_type>(increment.data(), points));
+  for (Index k = 0; k < size; ++k) {
+    const Index p = begin + k;
+    Continuum::accumulate_strain(strain[p], increment[k]);
+    std::array<std::array<double, Dim>, Dim> L;
+    for (int i = 0; i < Dim; ++i) {
+      for (int j = 0; j < Dim; ++j) L[i][j] = s.particle_rates[p].velocity_gradient(i, j);
+    }
+    const double volume_ratio = update_deformation<1, Dim>(s.particles, p, L, dt);
+    if (!(std::isfinite(stress[p].sum()) && volume_ratio > 0.0)) record_first(first_bad, p);
+  }
+}
+
+template <class State>
+void require_rates(const State& s, const char* where) {
+  require(static_cast<Index>(s.particle_rates.size()) == s.particles.size(),
+          std::string("Simulation::") + where + ": call velocity_gradient_from_grid first");
+}
+}  // namespace detail
+
 // Stage 4b: constitutive update, deformation gradient and volume from the rates of 4a. The
 // model takes the particles in runs of fixed length, one call each (material::update_batch):
 // a model with a batched return (CosseratDruckerPrager) is faster so, and the runs do not
 // depend on the thread count.
 template <class State>
 void update_stress(State& s, double dt) {
-  constexpr int Dim = State::dim;
-  using Model = typename State::model_type;
-  using Continuum = typename State::continuum_type;
-  using strain_type = typename Model::strain_type;
-  require(static_cast<Index>(s.particle_rates.size()) == s.particles.size(),
-          "Simulation::update_stress: call velocity_gradient_from_grid first");
+  detail::require_rates(s, "update_stress");
   if constexpr (averages_volume<State>) average_volumetric_rate(s);
   const Index count = s.particles.size();
-  auto& stress = s.particles.template get<particles::field::Stress<Model>>();
-  auto& state = s.particles.template get<particles::field::MaterialState<Model>>();
-  auto& strain = s.particles.template get<particles::field::Strain<Model>>();
-  constexpr Index run = 64;
+  constexpr Index run = detail::update_run;
   const Index runs = (count + run - 1) / run;
   Index first_bad = count;
   COSMPM_OMP_PARALLEL_FOR_MIN(s.threads, count, first_bad)
   for (Index r = 0; r < runs; ++r) {
-    const Index begin = r * run;
-    const Index size = std::min(run, count - begin);
-    const auto points = static_cast<std::size_t>(size);
-    std::array<strain_type, run> increment;
-    for (Index k = 0; k < size; ++k) {
-      increment[k] =
-          Continuum::rotate_and_increment(s.particle_rates[begin + k], dt, stress[begin + k]);
-    }
-    material::update_batch(s.model(), std::span(stress.data() + begin, points),
-                           std::span(state.data() + begin, points),
-                           std::span<const strain_type>(increment.data(), points));
-    for (Index k = 0; k < size; ++k) {
-      const Index p = begin + k;
-      Continuum::accumulate_strain(strain[p], increment[k]);
-      std::array<std::array<double, Dim>, Dim> L;
-      for (int i = 0; i < Dim; ++i) {
-        for (int j = 0; j < Dim; ++j) L[i][j] = s.particle_rates[p].velocity_gradient(i, j);
-      }
-      const double volume_ratio = update_deformation<1, Dim>(s.particles, p, L, dt);
-      if (!(std::isfinite(stress[p].sum()) && volume_ratio > 0.0)) record_first(first_bad, p);
-    }
+    detail::update_stress_run(s, r * run, std::min(run, count - r * run), dt, first_bad);
   }
-  if (first_bad < count) throw_unstable_stress<Dim, Model>(s.particles, first_bad, s.clock);
+  if (first_bad < count) {
+    throw_unstable_stress<State::dim, typename State::model_type>(s.particles, first_bad, s.clock);
+  }
 }
 
 }  // namespace cosmpm::stages

@@ -1,0 +1,198 @@
+#pragma once
+// The fused schemes' particle pass (integrator/fused.hpp): the pass that ends a step also
+// maps the particles to the grid for the next step. A particle's data is read once where the
+// unfused step reads it twice, the next step has no particle-to-grid pass of its own, and the
+// particles are visited in index order, as they lie in memory, not block by block in colour
+// order (docs/performance.md, "The fused particle pass", has what each buys).
+//
+// - USL, map_to_particles_and_grid: the grid-to-particle map with the stress update, then the
+//   particle's scatter at its new position.
+// - MUSL, update_stress_and_map_to_grid: stage 4b, in its runs of 64, then the scatter.
+//
+// Deterministic sums without colours: the particles are cut into two halves by index, and each
+// half scatters into its own node records (the first into s.scatter, the second into
+// s.scatter_upper), added after the pass. Each nodal sum is (its first-half terms in index
+// order) + (its second-half terms in index order), on one thread or two; so the pass runs on
+// at most two threads. The sums are USL's and MUSL's terms in another order: results differ
+// from the unfused schemes' by rounding (tests/simulation/fused.test.cpp bounds it).
+//
+// The records stay valid while nothing else touches the particles. Simulation drops them when
+// a user takes the particles, the continuum or the engine state for writing; every stage that
+// writes the records drops them too. map_to_grid_or_reuse then maps afresh.
+#include <algorithm>
+#include <array>
+#include <vector>
+
+#include "cosmpm/core/compiler.hpp"
+#include "cosmpm/core/pack.hpp"
+#include "cosmpm/core/parallel.hpp"
+#include "cosmpm/core/types.hpp"
+#include "cosmpm/particles/fields.hpp"
+#include "cosmpm/shape/stencil_grid.hpp"
+#include "cosmpm/simulation/diagnostics.hpp"
+#include "cosmpm/stages/grid_to_particle.hpp"
+#include "cosmpm/stages/particle_to_grid.hpp"
+#include "cosmpm/stages/stress_update.hpp"
+
+namespace cosmpm::stages {
+
+namespace detail {
+
+// What one half of a fused pass finds: the first particle of each kind (count for none) and
+// the lowest and highest first node of its stencils.
+struct alignas(64) FusedHalfReport {
+  Index first_outside;
+  Index first_bad;
+  Index first_moved;
+  Index first_invalid;  // no valid stencil at the new position
+  Index lowest_node;
+  Index highest_node;
+};
+
+// The next step's scatter of particle q at its current position into `records`.
+template <class State>
+COSMPM_ALWAYS_INLINE void scatter_next(State& s, const ScatterSources<State>& from, Index q,
+                                       const shape::StencilGrid<State::dim>& stencil_grid,
+                                       double* records, FusedHalfReport& report) {
+  typename State::stencil_type st;
+  if (!st.try_compute(stencil_grid, from.x[q], from.half[q])) [[unlikely]] {
+    record_first(report.first_invalid, q);
+    return;
+  }
+  for (int d = 0; d < State::dim; ++d) s.stencil_cells[q][d] = st.position_in_cells[d];
+  report.lowest_node = std::min(report.lowest_node, st.first_node);
+  report.highest_node = std::max(report.highest_node, st.first_node);
+  scatter_particle<true, State>(s.particles, from, q, st, s.stencil_cells[q], stencil_grid,
+                                records);
+}
+
+// Runs visit(first, last, records, report) over the two halves of the particles, on up to two
+// threads, then adds the second half's records into the first's. The cut is a multiple of 64
+// (stress_update.hpp's runs, and a whole number of packs), so each half starts a run.
+template <class State, class Visit>
+FusedHalfReport over_halves(State& s, Visit&& visit) {
+  using Record = typename State::scatter_record;
+  const Index count = s.particles.size();
+  const Index cut = count / 2 / update_run * update_run;
+  double* const lower = clear_scatter_records<true>(s);
+  s.scatter_upper.resize(s.scatter.size(), 0.0);
+  double* const upper = s.scatter_upper.data();
+  s.stencil_cells.resize(static_cast<std::size_t>(count));
+  std::array<FusedHalfReport, 2> reports;
+  for (auto& r : reports) {
+    r = {count, count, count, count, s.grid.node_count(), -1};
+  }
+  [[maybe_unused]] const int threads = std::min(s.threads, 2);
+  int team = 1;
+#if defined(_OPENMP)
+#pragma omp parallel for schedule(static) num_threads(threads) if (count >= parallel_threshold) \
+    reduction(max                                                                               \
+              : team)
+#endif
+  for (int h = 0; h < 2; ++h) {
+    team = current_team_size();
+    visit(h == 0 ? Index{0} : cut, h == 0 ? cut : count, h == 0 ? lower : upper, reports[h]);
+  }
+  s.fused_team = team;
+  // The second half's nodes: from its lowest first node to its highest one's stencil end.
+  const FusedHalfReport& second = reports[1];
+  if (second.highest_node >= 0) {
+    std::array<Index, State::dim> last_offset;
+    last_offset.fill(State::kernel_type::support - 1);
+    const Index end = second.highest_node + s.grid.node_index(last_offset) + 1;
+    for (Index i = second.lowest_node * Record::all; i < end * Record::all; ++i) {
+      lower[i] += upper[i];
+      upper[i] = 0.0;
+    }
+  }
+  FusedHalfReport all = reports[0];
+  all.first_outside = std::min(all.first_outside, second.first_outside);
+  all.first_bad = std::min(all.first_bad, second.first_bad);
+  all.first_moved = std::min(all.first_moved, second.first_moved);
+  all.first_invalid = std::min(all.first_invalid, second.first_invalid);
+  return all;
+}
+
+template <VelocityUpdate update, class State>
+void map_to_particles_and_grid(State& s, double dt) {
+  constexpr int W = pack_width;
+  require_start_stencils(s, "map_to_particles_and_grid");
+  const Index count = s.particles.size();
+  const auto pass = map_pass(s, dt);
+  const ScatterSources<State> from = scatter_sources(s);
+  const FusedHalfReport all =
+      over_halves(s, [&](Index first, Index last, double* records, FusedHalfReport& r) {
+        Index p = first;
+        for (; p + W <= last; p += W) {
+          map_from_grid<W, true, update>(s, p, pass, r.first_outside, r.first_bad, r.first_moved);
+          for (int l = 0; l < W; ++l) {
+            scatter_next(s, from, p + l, pass.stencil_grid, records, r);
+          }
+        }
+        for (; p < last; ++p) {
+          map_from_grid<1, true, update>(s, p, pass, r.first_outside, r.first_bad, r.first_moved);
+          scatter_next(s, from, p, pass.stencil_grid, records, r);
+        }
+      });
+  finish_map(s, all.first_outside, all.first_bad, all.first_moved);
+  s.prescattered = all.first_outside == count && all.first_invalid == count;
+}
+
+}  // namespace detail
+
+// Fused schemes, first stage: the node fields from the records the last step's fused pass
+// scattered, when they are still valid; otherwise map_to_grid(with_forces = true). Either way
+// the particles are sorted into their blocks, for the step's coloured maps (MUSL's remap).
+template <class State>
+void map_to_grid_or_reuse(State& s) {
+  if (s.prescattered && static_cast<Index>(s.stencil_cells.size()) == s.particles.size()) {
+    s.prescattered = false;
+    s.blocks.bucket(s.particles.template get<particles::field::Position<State::dim>>(),
+                    s.particles.size(), shape::StencilGrid<State::dim>(s.grid));
+    nodes_from_records(s, /*with_forces=*/true);
+    return;
+  }
+  map_to_grid(s, /*with_forces=*/true);
+}
+
+// Fused USL: map_to_particles(dt, with_stress_update = true), and the particle-to-grid map of
+// the next step in the same pass. A continuum that averages the volumetric rate over cells
+// (antilocking::FBar) needs every particle's rate before any stress update: it runs unfused.
+template <class State>
+void map_to_particles_and_grid(State& s, double dt) {
+  if constexpr (averages_volume<State>) {
+    map_to_particles(s, dt, /*with_stress_update=*/true);
+  } else {
+    using detail::VelocityUpdate;
+    detail::with_velocity_update(
+        s, [&]<VelocityUpdate update>() { detail::map_to_particles_and_grid<update>(s, dt); });
+  }
+}
+
+// Fused MUSL: update_stress(dt), and the particle-to-grid map of the next step in the same
+// pass.
+template <class State>
+void update_stress_and_map_to_grid(State& s, double dt) {
+  detail::require_rates(s, "update_stress_and_map_to_grid");
+  if constexpr (averages_volume<State>) average_volumetric_rate(s);
+  const Index count = s.particles.size();
+  const shape::StencilGrid<State::dim> stencil_grid(s.grid);
+  const detail::ScatterSources<State> from = detail::scatter_sources(s);
+  const detail::FusedHalfReport all = detail::over_halves(
+      s, [&](Index first, Index last, double* records, detail::FusedHalfReport& r) {
+        for (Index begin = first; begin < last; begin += detail::update_run) {
+          const Index end = std::min(begin + detail::update_run, last);
+          detail::update_stress_run(s, begin, end - begin, dt, r.first_bad);
+          for (Index q = begin; q < end; ++q) {
+            detail::scatter_next(s, from, q, stencil_grid, records, r);
+          }
+        }
+      });
+  if (all.first_bad < count) {
+    throw_unstable_stress<State::dim, typename State::model_type>(s.particles, all.first_bad,
+                                                                  s.clock);
+  }
+  s.prescattered = all.first_invalid == count;
+}
+
+}  // namespace cosmpm::stages
