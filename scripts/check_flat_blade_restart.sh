@@ -1,7 +1,7 @@
 #!/usr/bin/env bash
 # A flat-blade run stopped by SIGTERM and restarted (--restart true) writes the same
 # forces.csv, blade_stress.csv and frames as one that was not stopped; so does a restart
-# from a --checkpoint-every checkpoint, nonpolar and polar; a second run into a folder in
+# from a --checkpoint-every checkpoint, nonpolar, polar and with fused MUSL; a second run into a folder in
 # use is refused; a stopped run leaves no temporary file and an index of complete frames.
 # Run by ctest:
 #   scripts/check_flat_blade_restart.sh BUILD/examples/example_03_flat_blade WORK_DIR
@@ -55,6 +55,14 @@ rm -f polar_from_checkpoint/.cosmpm-lock
 "$program" "${polar_options[@]}" --out polar_from_checkpoint --restart true > polar_restart.log 2>&1 || fail "the polar restart: $(tail -3 polar_restart.log)"
 grep -q "^polar = true" polar_from_checkpoint/case.used || fail "the polar run's case.used does not say polar"
 
+# Fused MUSL (integrator/fused.hpp): the records its last pass scattered are not in the
+# checkpoint; the restarted run scatters afresh in the fused pass's order, so it writes the
+# same bits.
+"$program" "${case_options[@]}" --integrator fused-musl --out fused > fused.log 2>&1 || fail "the fused run: $(tail -3 fused.log)"
+cp -r fused fused_from_checkpoint
+rm -f fused_from_checkpoint/.cosmpm-lock
+"$program" "${case_options[@]}" --integrator fused-musl --out fused_from_checkpoint --restart true > fused_restart.log 2>&1 || fail "the fused restart: $(tail -3 fused_restart.log)"
+
 compare() {
 /usr/bin/python3 - "$@" <<'PYTHON'
 import csv, pathlib, sys
@@ -104,4 +112,5 @@ PYTHON
 }
 compare straight stopped from_checkpoint
 compare polar polar_from_checkpoint
+compare fused fused_from_checkpoint
 echo "check_flat_blade_restart: stopped and restarted runs wrote what the straight run wrote" >&2

@@ -186,8 +186,8 @@ class Simulation : detail::CompositionChecks<Dim, Kernel, Continuum, Contact, Sc
   }
   // Constitutive update, deformation gradient and volume from those rates.
   void update_stress(double dt) { stages::update_stress(state_, dt); }
-  // Fused schemes (integrator/fused.hpp): map_to_grid(true), or the node fields from the
-  // records the last step's fused pass scattered while they are valid.
+  // Fused schemes (integrator/fused.hpp): as map_to_grid(true), in the fused pass's order, or
+  // the node fields from the records the last step's fused pass scattered while they are valid.
   void map_to_grid_or_reuse() { stages::map_to_grid_or_reuse(state_); }
   // Fused USL: map_to_particles(dt, true) and the next step's map_to_grid in one pass.
   void map_to_particles_and_grid(double dt) { stages::map_to_particles_and_grid(state_, dt); }

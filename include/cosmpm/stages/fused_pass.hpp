@@ -18,7 +18,8 @@
 //
 // The records stay valid while nothing else touches the particles. Simulation drops them when
 // a user takes the particles, the continuum or the engine state for writing; every stage that
-// writes the records drops them too. map_to_grid_or_reuse then maps afresh.
+// writes the records drops them too. map_to_grid_or_reuse then scatters afresh, in the same
+// order, so dropping them changes no result.
 #include <algorithm>
 #include <array>
 #include <vector>
@@ -141,18 +142,34 @@ void map_to_particles_and_grid(State& s, double dt) {
 }  // namespace detail
 
 // Fused schemes, first stage: the node fields from the records the last step's fused pass
-// scattered, when they are still valid; otherwise map_to_grid(with_forces = true). Either way
-// the particles are sorted into their blocks, for the step's coloured maps (MUSL's remap).
+// scattered, when they are still valid; otherwise the particles are scattered afresh, in the
+// fused pass's order (index order, two halves), so a fused run's results do not depend on
+// when its records were dropped (a restart, a user's change between steps). Either way the
+// particles are sorted into their blocks, for the step's coloured maps (MUSL's remap).
 template <class State>
 void map_to_grid_or_reuse(State& s) {
-  if (s.prescattered && static_cast<Index>(s.stencil_cells.size()) == s.particles.size()) {
-    s.prescattered = false;
-    s.blocks.bucket(s.particles.template get<particles::field::Position<State::dim>>(),
-                    s.particles.size(), shape::StencilGrid<State::dim>(s.grid));
-    nodes_from_records(s, /*with_forces=*/true);
-    return;
+  constexpr int Dim = State::dim;
+  const Index count = s.particles.size();
+  const shape::StencilGrid<Dim> stencil_grid(s.grid);
+  const auto& x = s.particles.template get<particles::field::Position<Dim>>();
+  if (s.prescattered && static_cast<Index>(s.stencil_cells.size()) == count) {
+    s.blocks.bucket(x, count, stencil_grid);  // the engine noted every change of block
+  } else {
+    s.blocks.resort(x, count, stencil_grid);  // a user may have moved particles
+    const detail::ScatterSources<State> from = detail::scatter_sources(s);
+    const detail::FusedHalfReport all = detail::over_halves(
+        s, [&](Index first, Index last, double* records, detail::FusedHalfReport& r) {
+          for (Index q = first; q < last; ++q) {
+            detail::scatter_next(s, from, q, stencil_grid, records, r);
+          }
+        });
+    if (all.first_invalid < count) {
+      typename State::stencil_type st;  // throws, naming the particle's position
+      st.compute(stencil_grid, from.x[all.first_invalid], from.half[all.first_invalid]);
+    }
   }
-  map_to_grid(s, /*with_forces=*/true);
+  s.prescattered = false;
+  nodes_from_records(s, /*with_forces=*/true);
 }
 
 // Fused USL: map_to_particles(dt, with_stress_update = true), and the particle-to-grid map of
