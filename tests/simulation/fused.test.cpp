@@ -12,6 +12,7 @@
 #include <algorithm>
 #include <cmath>
 #include <numbers>
+#include <string>
 #include <type_traits>
 #include <utility>
 
@@ -120,6 +121,22 @@ void run_side_by_side(Plain& plain, Fused& fused, int steps) {
   }
 }
 
+// Runs `steps` steps of each, then checks the fused run against the unfused one within the
+// bound above and the fused runs on one and two threads against each other, bit for bit.
+template <class Plain, class Fused>
+void check_fused(Plain& plain, Fused& fused, Fused& fused_two, int steps,
+                 const std::string& label) {
+  run_side_by_side(plain, fused, steps);
+  for (int i = 0; i < steps; ++i) fused_two.step(plain.time_step());
+  const double difference = largest_relative_difference(plain, fused);
+  MESSAGE(label << " after " << steps << " steps: " << difference);
+  CHECK(difference <= 1e-11);
+#if defined(_OPENMP)
+  CHECK(std::as_const(fused_two).engine().fused_team == 2);  // the parallel path ran
+#endif
+  CHECK(largest_relative_difference(fused, fused_two) == 0.0);
+}
+
 }  // namespace
 
 TEST_CASE(
@@ -131,17 +148,9 @@ TEST_CASE(
   Plain plain = thrown_block<Plain>(continuum::Classical<Soil>(corn()), 1, 0.5, true);
   Fused fused = thrown_block<Fused>(continuum::Classical<Soil>(corn()), 1, 0.5, true);
   Fused fused_two = thrown_block<Fused>(continuum::Classical<Soil>(corn()), 2, 0.5, true);
-  run_side_by_side(plain, fused, 200);
-  for (int i = 0; i < 200; ++i) fused_two.step(plain.time_step());
+  check_fused(plain, fused, fused_two, 200, "fused MUSL against MUSL");
   const auto& state = fused.particles().get<particles::field::MaterialState<Soil>>();
   CHECK(std::count_if(state.begin(), state.end(), [](const auto& s) { return s.plastic; }) > 100);
-  const double difference = largest_relative_difference(plain, fused);
-  MESSAGE("fused MUSL against MUSL after 200 steps: " << difference);
-  CHECK(difference <= 1e-11);
-#if defined(_OPENMP)
-  CHECK(std::as_const(fused_two).engine().fused_team == 2);  // the parallel path ran
-#endif
-  CHECK(largest_relative_difference(fused, fused_two) == 0.0);
 }
 
 TEST_CASE("fused USL: within rounding of USL, the same on 1 and 2 threads") {
@@ -153,15 +162,7 @@ TEST_CASE("fused USL: within rounding of USL, the same on 1 and 2 threads") {
   Plain plain = vibrating_bar<Plain>(elastic, 1);
   Fused fused = vibrating_bar<Fused>(elastic, 1);
   Fused fused_two = vibrating_bar<Fused>(elastic, 2);
-  run_side_by_side(plain, fused, 300);
-  for (int i = 0; i < 300; ++i) fused_two.step(plain.time_step());
-  const double difference = largest_relative_difference(plain, fused);
-  MESSAGE("fused USL against USL after 300 steps: " << difference);
-  CHECK(difference <= 1e-11);
-#if defined(_OPENMP)
-  CHECK(std::as_const(fused_two).engine().fused_team == 2);  // the parallel path ran
-#endif
-  CHECK(largest_relative_difference(fused, fused_two) == 0.0);
+  check_fused(plain, fused, fused_two, 300, "fused USL against USL");
 }
 
 TEST_CASE("fused schemes: particles written between steps are mapped as written") {
