@@ -191,6 +191,8 @@ class Simulation : detail::CompositionChecks<Dim, Kernel, Continuum, Contact, Sc
   void map_to_grid_or_reuse() { stages::map_to_grid_or_reuse(state_); }
   // Fused USL: map_to_particles(dt, true) and the next step's map_to_grid in one pass.
   void map_to_particles_and_grid(double dt) { stages::map_to_particles_and_grid(state_, dt); }
+  // Fused MUSL: map_to_particles(dt) and remap_momentum(dt) in one pass.
+  void map_to_particles_and_remap(double dt) { stages::map_to_particles_and_remap(state_, dt); }
   // Fused MUSL: update_stress(dt) and the next step's map_to_grid in one pass.
   void update_stress_and_map_to_grid(double dt) {
     stages::update_stress_and_map_to_grid(state_, dt);

@@ -1,7 +1,8 @@
 #pragma once
-// USL and MUSL with one particle pass fewer per step: the pass that ends a step also maps the
+// USL and MUSL with fewer particle passes per step: the pass that ends a step also maps the
 // particles to the grid for the next one (stages/fused_pass.hpp), and the next step takes the
-// node fields from those records. Opt-in: the nodal sums take the unfused schemes' terms in
+// node fields from those records; MUSL's grid-to-particle map also remaps the momenta in the
+// same pass. Opt-in: the nodal sums take the unfused schemes' terms in
 // another order, so results differ from USL's and MUSL's by rounding; they are the same on one
 // thread and on two, and the fused pass itself runs on at most two. The unfused schemes and
 // their stages stay as they are.
@@ -29,8 +30,7 @@ struct FusedMUSL {
   static void step(Sim& sim, double dt) {
     sim.map_to_grid_or_reuse();
     sim.update_grid(dt);
-    sim.map_to_particles(dt);
-    sim.remap_momentum(dt);
+    sim.map_to_particles_and_remap(dt);
     sim.velocity_gradient_from_grid(sim.nodes().velocity, sim.nodes().spin);
     sim.update_stress_and_map_to_grid(dt);
   }

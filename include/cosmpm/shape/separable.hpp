@@ -208,6 +208,23 @@ struct PackedStencil : StencilFactors<Dim, K, Pack<W>> {
     }
     stride = grid.stride;
   }
+
+  // Lane l as one particle's stencil (its factors and first node; cell and position_in_cells
+  // are left zero): for a scatter at the stencil of this gather.
+  COSMPM_ALWAYS_INLINE SeparableStencil<Dim, K> lane(int l) const {
+    SeparableStencil<Dim, K> one{};
+    one.first_node = first_node[l];
+    one.stride = stride;
+    COSMPM_UNROLL
+    for (int d = 0; d < Dim; ++d) {
+      COSMPM_UNROLL
+      for (int i = 0; i < support; ++i) {
+        one.w[d][i] = cosmpm::lane<W>(w[d][i], l);
+        one.dw[d][i] = cosmpm::lane<W>(dw[d][i], l);
+      }
+    }
+    return one;
+  }
 };
 
 }  // namespace cosmpm::shape

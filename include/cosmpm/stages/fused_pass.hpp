@@ -8,6 +8,8 @@
 // - USL, map_to_particles_and_grid: the grid-to-particle map with the stress update, then the
 //   particle's scatter at its new position.
 // - MUSL, update_stress_and_map_to_grid: stage 4b, in its runs of 64, then the scatter.
+// - MUSL, map_to_particles_and_remap: the grid-to-particle map, then the particle's remap of
+//   its new momenta at the same stencil, so the remap is no pass of its own.
 //
 // Deterministic sums without colours: the particles are cut into two halves by index, and each
 // half scatters into its own node records (the first into s.scatter, the second into
@@ -68,14 +70,13 @@ COSMPM_ALWAYS_INLINE void scatter_next(State& s, const ScatterSources<State>& fr
 }
 
 // Runs visit(first, last, records, report) over the two halves of the particles, on up to two
-// threads, then adds the second half's records into the first's. The cut is a multiple of 64
-// (stress_update.hpp's runs, and a whole number of packs), so each half starts a run.
-template <class State, class Visit>
-FusedHalfReport over_halves(State& s, Visit&& visit) {
-  using Record = typename State::scatter_record;
+// threads, then adds the second half's records into the first's, `lower` (zeroed, in
+// s.scatter, C doubles per node). The cut is a multiple of 64 (stress_update.hpp's runs, and a
+// whole number of packs), so each half starts a run.
+template <int C, class State, class Visit>
+FusedHalfReport over_halves(State& s, double* const lower, Visit&& visit) {
   const Index count = s.particles.size();
   const Index cut = count / 2 / update_run * update_run;
-  double* const lower = clear_scatter_records<true>(s);
   s.scatter_upper.resize(s.scatter.size(), 0.0);
   double* const upper = s.scatter_upper.data();
   s.stencil_cells.resize(static_cast<std::size_t>(count));
@@ -101,7 +102,7 @@ FusedHalfReport over_halves(State& s, Visit&& visit) {
     std::array<Index, State::dim> last_offset;
     last_offset.fill(State::kernel_type::support - 1);
     const Index end = second.highest_node + s.grid.node_index(last_offset) + 1;
-    for (Index i = second.lowest_node * Record::all; i < end * Record::all; ++i) {
+    for (Index i = second.lowest_node * C; i < end * C; ++i) {
       lower[i] += upper[i];
       upper[i] = 0.0;
     }
@@ -121,25 +122,74 @@ void map_to_particles_and_grid(State& s, double dt) {
   const Index count = s.particles.size();
   const auto pass = map_pass(s, dt);
   const ScatterSources<State> from = scatter_sources(s);
+  constexpr int C = State::scatter_record::all;
   const FusedHalfReport all =
-      over_halves(s, [&](Index first, Index last, double* records, FusedHalfReport& r) {
-        Index p = first;
-        for (; p + W <= last; p += W) {
-          map_from_grid<W, true, update>(s, p, pass, r.first_outside, r.first_bad, r.first_moved);
-          for (int l = 0; l < W; ++l) {
-            scatter_next(s, from, p + l, pass.stencil_grid, records, r);
-          }
-        }
-        for (; p < last; ++p) {
-          map_from_grid<1, true, update>(s, p, pass, r.first_outside, r.first_bad, r.first_moved);
-          scatter_next(s, from, p, pass.stencil_grid, records, r);
-        }
-      });
+      over_halves<C>(s, clear_scatter_records<true>(s),
+                     [&](Index first, Index last, double* records, FusedHalfReport& r) {
+                       Index p = first;
+                       for (; p + W <= last; p += W) {
+                         PackedStencilOf<State, W> st;
+                         map_from_grid<W, true, update>(s, p, pass, st, r.first_outside,
+                                                        r.first_bad, r.first_moved);
+                         for (int l = 0; l < W; ++l) {
+                           scatter_next(s, from, p + l, pass.stencil_grid, records, r);
+                         }
+                       }
+                       for (; p < last; ++p) {
+                         PackedStencilOf<State, 1> st;
+                         map_from_grid<1, true, update>(s, p, pass, st, r.first_outside,
+                                                        r.first_bad, r.first_moved);
+                         scatter_next(s, from, p, pass.stencil_grid, records, r);
+                       }
+                     });
   finish_map(s, all.first_outside, all.first_bad, all.first_moved);
   s.prescattered = all.first_outside == count && all.first_invalid == count;
 }
 
+// Fused MUSL: map_to_particles, then each particle's updated momenta back to the grid at the
+// same start-of-step stencil (remap_momentum's terms), in one pass.
+template <VelocityUpdate update, class State>
+void map_to_particles_and_remap(State& s, double dt) {
+  constexpr int W = pack_width;
+  require_start_stencils(s, "map_to_particles_and_remap");
+  const auto pass = map_pass(s, dt);
+  const auto remap = [&](Index p, const typename State::stencil_type& st, double* records,
+                         FusedHalfReport& r) COSMPM_INLINE_LAMBDA {
+    r.lowest_node = std::min(r.lowest_node, st.first_node);
+    r.highest_node = std::max(r.highest_node, st.first_node);
+    remap_particle(s, p, st, pass.stencil_grid, records);
+  };
+  double* const records = clear_remap_records(s);
+  const FusedHalfReport all = over_halves<remap_components<State>>(
+      s, records, [&](Index first, Index last, double* half_records, FusedHalfReport& r) {
+        Index p = first;
+        for (; p + W <= last; p += W) {
+          PackedStencilOf<State, W> st;
+          map_from_grid<W, false, update>(s, p, pass, st, r.first_outside, r.first_bad,
+                                          r.first_moved);
+          for (int l = 0; l < W; ++l) remap(p + l, st.lane(l), half_records, r);
+        }
+        for (; p < last; ++p) {
+          PackedStencilOf<State, 1> st;
+          map_from_grid<1, false, update>(s, p, pass, st, r.first_outside, r.first_bad,
+                                          r.first_moved);
+          remap(p, st.lane(0), half_records, r);
+        }
+      });
+  finish_map(s, all.first_outside, all.first_bad, all.first_moved);
+  velocities_from_remap(s, records, dt);
+}
+
 }  // namespace detail
+
+// Fused MUSL: map_to_particles(dt) and remap_momentum(dt) in one pass over the particles, the
+// remap's sums in the fused pass's order (index order, two halves) instead of colour order.
+template <class State>
+void map_to_particles_and_remap(State& s, double dt) {
+  using detail::VelocityUpdate;
+  detail::with_velocity_update(
+      s, [&]<VelocityUpdate update>() { detail::map_to_particles_and_remap<update>(s, dt); });
+}
 
 // Fused schemes, first stage: the node fields from the records the last step's fused pass
 // scattered, when they are still valid; otherwise the particles are scattered afresh, in the
@@ -157,8 +207,9 @@ void map_to_grid_or_reuse(State& s) {
   } else {
     s.blocks.resort(x, count, stencil_grid);  // a user may have moved particles
     const detail::ScatterSources<State> from = detail::scatter_sources(s);
-    const detail::FusedHalfReport all = detail::over_halves(
-        s, [&](Index first, Index last, double* records, detail::FusedHalfReport& r) {
+    const detail::FusedHalfReport all = detail::over_halves<State::scatter_record::all>(
+        s, detail::clear_scatter_records<true>(s),
+        [&](Index first, Index last, double* records, detail::FusedHalfReport& r) {
           for (Index q = first; q < last; ++q) {
             detail::scatter_next(s, from, q, stencil_grid, records, r);
           }
@@ -195,8 +246,9 @@ void update_stress_and_map_to_grid(State& s, double dt) {
   const Index count = s.particles.size();
   const shape::StencilGrid<State::dim> stencil_grid(s.grid);
   const detail::ScatterSources<State> from = detail::scatter_sources(s);
-  const detail::FusedHalfReport all = detail::over_halves(
-      s, [&](Index first, Index last, double* records, detail::FusedHalfReport& r) {
+  const detail::FusedHalfReport all = detail::over_halves<State::scatter_record::all>(
+      s, detail::clear_scatter_records<true>(s),
+      [&](Index first, Index last, double* records, detail::FusedHalfReport& r) {
         for (Index begin = first; begin < last; begin += detail::update_run) {
           const Index end = std::min(begin + detail::update_run, last);
           detail::update_stress_run(s, begin, end - begin, dt, r.first_bad);

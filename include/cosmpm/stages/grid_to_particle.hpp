@@ -47,9 +47,13 @@ struct ParticleMapPass {
   Blocks blocks;  // BlockScheduler::Lookup
 };
 
-// Grid to particles p, ..., p + W - 1.
+template <class State, int W>
+using PackedStencilOf = shape::PackedStencil<State::dim, typename State::kernel_type, W>;
+
+// Grid to particles p, ..., p + W - 1, at their start-of-step stencils, computed into st.
 template <int W, bool with_stress_update, VelocityUpdate update, class State>
-COSMPM_ALWAYS_INLINE void map_from_grid(State& s, Index p, const auto& pass, Index& first_outside,
+COSMPM_ALWAYS_INLINE void map_from_grid(State& s, Index p, const auto& pass,
+                                        PackedStencilOf<State, W>& st, Index& first_outside,
                                         Index& first_bad, Index& first_moved) {
   constexpr int Dim = State::dim;
   constexpr int R = State::rotational_dofs;
@@ -66,7 +70,6 @@ COSMPM_ALWAYS_INLINE void map_from_grid(State& s, Index p, const auto& pass, Ind
   // Velocity (and the rotational rates) with gradients when the stress is updated here, then
   // the accelerations.
   constexpr int with_gradient = with_stress_update ? Record::with_gradient : 0;
-  shape::PackedStencil<Dim, typename State::kernel_type, W> st;
   st.compute_from_cell_units(
       pass.stencil_grid, [&](int l) -> const Vec<Dim>& { return start[p + l]; },
       [&](int l) -> const Vec<Dim>& { return half[p + l]; });
@@ -242,11 +245,14 @@ void map_to_particles(State& s, double dt) {
   const Index packs = count / W;
   COSMPM_OMP_PARALLEL_FOR_MIN(s.threads, count, first_outside, first_bad, first_moved)
   for (Index b = 0; b < packs; ++b) {
-    map_from_grid<W, with_stress_update, update>(s, b * W, pass, first_outside, first_bad,
+    PackedStencilOf<State, W> st;
+    map_from_grid<W, with_stress_update, update>(s, b * W, pass, st, first_outside, first_bad,
                                                  first_moved);
   }
   for (Index p = packs * W; p < count; ++p) {
-    map_from_grid<1, with_stress_update, update>(s, p, pass, first_outside, first_bad, first_moved);
+    PackedStencilOf<State, 1> st;
+    map_from_grid<1, with_stress_update, update>(s, p, pass, st, first_outside, first_bad,
+                                                 first_moved);
   }
   finish_map(s, first_outside, first_bad, first_moved);
 }
