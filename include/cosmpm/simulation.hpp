@@ -38,6 +38,7 @@
 #include "cosmpm/stages/grid_to_particle.hpp"
 #include "cosmpm/stages/grid_update.hpp"
 #include "cosmpm/stages/particle_to_grid.hpp"
+#include "cosmpm/stages/remap.hpp"
 #include "cosmpm/stages/stress_update.hpp"
 #include "cosmpm/transfer/apic.hpp"
 #include "cosmpm/transfer/concept.hpp"

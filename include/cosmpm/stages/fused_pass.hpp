@@ -35,6 +35,7 @@
 #include "cosmpm/simulation/diagnostics.hpp"
 #include "cosmpm/stages/grid_to_particle.hpp"
 #include "cosmpm/stages/particle_to_grid.hpp"
+#include "cosmpm/stages/remap.hpp"
 #include "cosmpm/stages/stress_update.hpp"
 
 namespace cosmpm::stages {

@@ -2,9 +2,8 @@
 // Stage 1, particle to grid: mass, momentum (and the rotational degrees of freedom's inertia
 // and momentum) and, with forces, the internal and external forces (and moments), scattered
 // block by block in colour order (simulation/block_scheduler.hpp), so every nodal sum is
-// taken in the same order whatever the thread count. Also the later particle-to-grid maps of
-// a step, at the stencils of its first: USF's forces after the stress update and MUSL's
-// remapped momentum.
+// taken in the same order whatever the thread count. Also USF's forces after the stress
+// update, at the stencils of the step's first map (MUSL's remap is in stages/remap.hpp).
 #include <algorithm>
 #include <array>
 #include <cstddef>
@@ -319,90 +318,6 @@ void map_forces_to_grid(State& s) {
     for (int d = 0; d < Dim; ++d) nodes.force[n][d] = records[n * forces + d];
     for (int k = 0; k < R; ++k) nodes.moment[n * R + k] = records[n * forces + Dim + k];
   }
-}
-
-namespace detail {
-
-// MUSL's remap record: momentum, the rotational momenta, then an affine transfer's terms.
-template <class State>
-inline constexpr int remap_components = State::dim + State::rotational_dofs + State::affine_terms;
-
-// Particle p's updated momenta added to the remap records at its start-of-step stencil st.
-template <class State>
-COSMPM_ALWAYS_INLINE void remap_particle(const State& s, Index p,
-                                         const typename State::stencil_type& st,
-                                         const shape::StencilGrid<State::dim>& stencil_grid,
-                                         double* records) {
-  constexpr int Dim = State::dim;
-  constexpr int R = State::rotational_dofs;
-  using Continuum = typename State::continuum_type;
-  const auto& v = s.particles.template get<particles::field::Velocity<Dim>>();
-  const double mass = s.particles.template get<particles::field::Mass>()[p];
-  std::array<double, remap_components<State>> weighted;
-  momentum_terms<State>(s.particles, p, mass, v[p], st, s.stencil_cells[p], stencil_grid,
-                        weighted.data(), weighted.data() + Dim + R);
-  if constexpr (R > 0) {
-    const auto inertia = Continuum::rotational_inertia(s.particles, p, mass);
-    const auto spin = Continuum::rotational_velocity(s.particles, p);
-    for (int k = 0; k < R; ++k) weighted[Dim + k] = inertia[k] * spin[k];
-  }
-  shape::scatter<remap_components<State>>(st, records, weighted, {});
-}
-
-// The remap records of s.scatter, zeroed, sized for the grid (and for the later maps' records).
-template <class State>
-double* clear_remap_records(State& s) {
-  const std::size_t nodes = static_cast<std::size_t>(s.grid.node_count());
-  constexpr auto all = static_cast<std::size_t>(State::scatter_record::all);
-  s.scatter.resize(std::max(s.scatter.size(), all * nodes));
-  s.prescattered = false;
-  constexpr auto width = static_cast<std::size_t>(remap_components<State>);
-  std::fill(s.scatter.begin(), s.scatter.begin() + static_cast<std::ptrdiff_t>(width * nodes), 0.0);
-  return s.scatter.data();
-}
-
-// The remapped node velocities (and spins) from the remap records, then contact (its
-// remapped-velocity phase, with the step's dt) and the boundary conditions.
-template <class State>
-void velocities_from_remap(State& s, const double* records, double dt) {
-  constexpr int Dim = State::dim;
-  constexpr int R = State::rotational_dofs;
-  constexpr int C = remap_components<State>;
-  auto& nodes = s.nodes;
-  const Index count = s.grid.node_count();
-  const double empty = s.empty_node_mass();
-  for (Index n = 0; n < count; ++n) {
-    if (nodes.mass[n] <= empty) {
-      nodes.velocity[n].setZero();
-      for (int k = 0; k < R; ++k) nodes.spin[n * R + k] = 0.0;
-      continue;
-    }
-    const double* const record = records + n * C;
-    nodes.velocity[n] = nodal_momentum(s, n, record, record + Dim + R) / nodes.mass[n];
-    for (int k = 0; k < R; ++k) {
-      nodes.spin[n * R + k] = record[Dim + k] / nodes.rotational_inertia[n * R + k];
-    }
-  }
-  correct_and_apply_conditions(s, nodes.velocity, nodes.spin, dt,
-                               contact::Phase::remapped_velocity);
-}
-
-}  // namespace detail
-
-// MUSL: maps the updated particle momenta back to the grid (with the start-of-step stencils,
-// as the grid mass was) into nodes.velocity (and spin), for the strain rate; contact (its
-// remapped-velocity phase, with the step's dt) and boundary conditions apply to it.
-template <class State>
-void remap_momentum(State& s, double dt) {
-  require_start_stencils(s, "remap_momentum");
-  double* const records = detail::clear_remap_records(s);
-  const shape::StencilGrid<State::dim> stencil_grid(s.grid);
-  s.blocks.for_each_coloured(s.threads, s.particles.size(), [&](Index p) {
-    typename State::stencil_type st;
-    start_stencil(s, p, stencil_grid, st);
-    detail::remap_particle(s, p, st, stencil_grid, records);
-  });
-  detail::velocities_from_remap(s, records, dt);
 }
 
 }  // namespace cosmpm::stages
