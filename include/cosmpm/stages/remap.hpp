@@ -8,6 +8,7 @@
 #include <cstddef>
 
 #include "cosmpm/core/compiler.hpp"
+#include "cosmpm/core/parallel.hpp"
 #include "cosmpm/core/types.hpp"
 #include "cosmpm/particles/fields.hpp"
 #include "cosmpm/shape/stencil_grid.hpp"
@@ -67,6 +68,7 @@ void velocities_from_remap(State& s, const double* records, double dt) {
   auto& nodes = s.nodes;
   const Index count = s.grid.node_count();
   const double empty = s.empty_node_mass();
+  COSMPM_OMP_PARALLEL_FOR(s.threads, count)  // the node loops' static shares
   for (Index n = 0; n < count; ++n) {
     if (nodes.mass[n] <= empty) {
       nodes.velocity[n].setZero();

@@ -151,6 +151,7 @@ void velocity_gradient_from_grid(State& s, const std::vector<Vec<State::dim>>& n
               std::to_string(nodes) + " nodes");
   s.gather.resize(static_cast<std::size_t>(Record::all * nodes));
   constexpr int size = Record::with_gradient;  // per node: velocity and the rotational rates
+  COSMPM_OMP_PARALLEL_FOR(s.threads, nodes)    // the node loops' static shares
   for (Index n = 0; n < nodes; ++n) {
     for (int d = 0; d < Dim; ++d) s.gather[n * size + Record::velocity + d] = node_velocity[n][d];
     for (int k = 0; k < R; ++k) s.gather[n * size + Record::spin + k] = node_spin[n * R + k];
