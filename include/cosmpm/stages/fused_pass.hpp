@@ -196,7 +196,8 @@ void map_to_particles_and_remap(State& s, double dt) {
 // scattered, when they are still valid; otherwise the particles are scattered afresh, in the
 // fused pass's order (index order, two halves), so a fused run's results do not depend on
 // when its records were dropped (a restart, a user's change between steps). Either way the
-// particles are sorted into their blocks, for the step's coloured maps (MUSL's remap).
+// particles are sorted into their blocks, for any coloured stage a user's scheme calls next
+// (the fused schemes themselves have none).
 template <class State>
 void map_to_grid_or_reuse(State& s) {
   constexpr int Dim = State::dim;
