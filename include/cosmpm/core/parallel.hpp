@@ -1,4 +1,7 @@
 #pragma once
+#include <algorithm>
+
+#include "cosmpm/core/types.hpp"
 // OpenMP without warnings when it is off: loops compile serially and stay correct.
 #if defined(_OPENMP)
 #include <omp.h>
@@ -23,9 +26,13 @@
 #define COSMPM_OMP_PARALLEL_FOR_MIN(threads, work, ...)                              \
   COSMPM_PRAGMA(omp parallel for schedule(static) num_threads(threads) if ((work) >= \
                                                                          cosmpm::parallel_threshold) reduction(min : __VA_ARGS__))
+// A team for a region that splits its work itself (static_share below).
+#define COSMPM_OMP_PARALLEL(threads, work) \
+  COSMPM_PRAGMA(omp parallel num_threads(threads) if ((work) >= cosmpm::parallel_threshold))
 #else
 #define COSMPM_OMP_PARALLEL_FOR(threads, work)
 #define COSMPM_OMP_PARALLEL_FOR_MIN(threads, work, ...)
+#define COSMPM_OMP_PARALLEL(threads, work)
 #endif
 
 namespace cosmpm {
@@ -58,6 +65,21 @@ inline int current_thread() {
 #else
   return 0;
 #endif
+}
+
+// The iterations [first, last) of `count` that `schedule(static)` gives the calling thread:
+// a region doing several loops over the same share runs them without a barrier between.
+struct Share {
+  Index first;
+  Index last;
+};
+inline Share static_share(Index count) {
+  const Index team = current_team_size();
+  const Index thread = current_thread();
+  const Index base = count / team;
+  const Index extra = count % team;  // the first `extra` threads take one more
+  const Index first = thread * base + std::min(thread, extra);
+  return {first, first + base + (thread < extra ? 1 : 0)};
 }
 
 }  // namespace cosmpm

@@ -76,8 +76,13 @@ struct EngineState {
   // The fused schemes' particle pass scattered the next step's records (stages/fused_pass.hpp);
   // cleared by anything that writes the records or may have changed the particles since.
   bool prescattered = false;
-  // Its second half's records, zero between passes, and the threads that ran it last.
+  // Its second half's records, upper_width doubles per node, pending in the nodes
+  // [upper_first, upper_end) until the node pass that reads the records adds them (zero
+  // elsewhere and after); and the threads that ran the pass last.
   std::vector<double> scatter_upper;
+  Index upper_first = 0;
+  Index upper_end = 0;
+  int upper_width = 0;
   int fused_team = 1;
   std::vector<double> gather;  // node records of the grid-to-particle maps
   // Particle positions in cell units at the last map_to_grid: the stencils of the step.

@@ -13,10 +13,10 @@
 //
 // Deterministic sums without colours: the particles are cut into two halves by index, and each
 // half scatters into its own node records (the first into s.scatter, the second into
-// s.scatter_upper), added after the pass. Each nodal sum is (its first-half terms in index
-// order) + (its second-half terms in index order), on one thread or two; so the pass runs on
-// at most two threads. The sums are USL's and MUSL's terms in another order: results differ
-// from the unfused schemes' by rounding (tests/simulation/fused.test.cpp bounds it).
+// s.scatter_upper), added by the node pass that reads them. Each nodal sum is (its first-half terms
+// in index order) + (its second-half terms in index order), on one thread or two; so the pass runs
+// on at most two threads. The sums are USL's and MUSL's terms in another order: results differ from
+// the unfused schemes' by rounding (tests/simulation/fused.test.cpp bounds it).
 //
 // The records stay valid while nothing else touches the particles. Simulation drops them when
 // a user takes the particles, the continuum or the engine state for writing; every stage that
@@ -71,11 +71,13 @@ COSMPM_ALWAYS_INLINE void scatter_next(State& s, const ScatterSources<State>& fr
 }
 
 // Runs visit(first, last, records, report) over the two halves of the particles, on up to two
-// threads, then adds the second half's records into the first's, `lower` (zeroed, in
-// s.scatter, C doubles per node). The cut is a multiple of 64 (stress_update.hpp's runs, and a
-// whole number of packs), so each half starts a run.
+// threads: the first half into `lower` (zeroed, in s.scatter, C doubles per node), the second
+// into s.scatter_upper, left pending for the node pass that reads the records
+// (particle_to_grid.hpp, add_pending_upper). The cut is a multiple of 64 (stress_update.hpp's
+// runs, and a whole number of packs), so each half starts a run.
 template <int C, class State, class Visit>
 FusedHalfReport over_halves(State& s, double* const lower, Visit&& visit) {
+  discard_pending_upper(s);  // as the clear of `lower` did
   const Index count = s.particles.size();
   const Index cut = count / 2 / update_run * update_run;
   s.scatter_upper.resize(s.scatter.size(), 0.0);
@@ -102,11 +104,9 @@ FusedHalfReport over_halves(State& s, double* const lower, Visit&& visit) {
   if (second.highest_node >= 0) {
     std::array<Index, State::dim> last_offset;
     last_offset.fill(State::kernel_type::support - 1);
-    const Index end = second.highest_node + s.grid.node_index(last_offset) + 1;
-    for (Index i = second.lowest_node * C; i < end * C; ++i) {
-      lower[i] += upper[i];
-      upper[i] = 0.0;
-    }
+    s.upper_first = second.lowest_node;
+    s.upper_end = second.highest_node + s.grid.node_index(last_offset) + 1;
+    s.upper_width = C;
   }
   FusedHalfReport all = reports[0];
   all.first_outside = std::min(all.first_outside, second.first_outside);

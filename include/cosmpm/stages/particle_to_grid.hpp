@@ -178,12 +178,59 @@ COSMPM_ALWAYS_INLINE void scatter_particle(const typename State::store_type& par
   shape::scatter<W>(st, records, weighted, by_gradient);
 }
 
+// The fused pass's second-half records not yet added (stages/fused_pass.hpp, over_halves):
+// the node pass that reads the records adds them, in its own thread's nodes, so no thread
+// adds them all alone between the passes.
+struct PendingUpper {
+  double* upper = nullptr;
+  Index first = 0;
+  Index end = 0;
+  Index width = 0;
+};
+
+// Takes the pending second-half records for a node pass over records of `width` doubles.
+template <class State>
+PendingUpper take_pending_upper(State& s, Index width) {
+  const PendingUpper pending{s.scatter_upper.data(), s.upper_first, s.upper_end, width};
+  if (pending.end > pending.first) {
+    require(s.upper_width == width, "a node pass read " + std::to_string(width) +
+                                        " doubles per node where the fused pass wrote " +
+                                        std::to_string(s.upper_width));
+  }
+  s.upper_first = s.upper_end = 0;
+  return pending;
+}
+
+// The records of the nodes [first, last) completed: their second-half terms added to their
+// first half's, in that order, and zeroed for the next pass.
+inline void add_pending_upper(const PendingUpper& pending, double* records, Index first,
+                              Index last) {
+  first = std::max(first, pending.first);
+  last = std::min(last, pending.end);
+  double* const upper = pending.upper;
+  for (Index i = first * pending.width; i < last * pending.width; ++i) {
+    records[i] += upper[i];
+    upper[i] = 0.0;
+  }
+}
+
+// Drops pending second-half records: whatever clears the records starts afresh.
+template <class State>
+void discard_pending_upper(State& s) {
+  if (s.upper_end > s.upper_first) {
+    const auto at = [&](Index n) { return s.scatter_upper.begin() + n * s.upper_width; };
+    std::fill(at(s.upper_first), at(s.upper_end), 0.0);
+  }
+  s.upper_first = s.upper_end = 0;
+}
+
 // The node records of the particle-to-grid map, zeroed, sized for the grid.
 template <bool with_forces, class State>
 double* clear_scatter_records(State& s) {
   using Record = typename State::scatter_record;
   constexpr int C = with_forces ? Record::all : Record::weighted;
   const Index nodes = s.grid.node_count();
+  discard_pending_upper(s);
   s.scatter.resize(static_cast<std::size_t>(Record::all * nodes));
   std::fill(s.scatter.begin(), s.scatter.begin() + C * nodes, 0.0);
   s.prescattered = false;
@@ -241,26 +288,31 @@ void nodes_from_records(State& s, bool with_forces) {
   // neighbours share here (halo exchange), before any node pass reads them.
   const Index count = s.grid.node_count();
   const Index size = with_forces ? Record::all : Record::weighted;  // per node
-  const double* const scattered = s.scatter.data();
+  double* const scattered = s.scatter.data();
+  const detail::PendingUpper pending = detail::take_pending_upper(s, size);
   auto& nodes = s.nodes;
   // In the node loops' static shares (as update_grid's): each thread writes the nodes it
   // updates next, where one thread writing them all cost the two-thread step 14-22 us.
-  COSMPM_OMP_PARALLEL_FOR(s.threads, count)
-  for (Index n = 0; n < count; ++n) {
-    const double* const record = scattered + n * size;
-    nodes.mass[n] = record[Record::mass];
-    if constexpr (State::transfer_type::affine) {
-      nodes.momentum[n] = nodal_momentum(s, n, record + Record::momentum, record + Record::affine);
-    } else {
-      for (int d = 0; d < Dim; ++d) nodes.momentum[n][d] = record[Record::momentum + d];
-    }
-    for (int d = 0; d < Dim; ++d) {
-      if (with_forces) nodes.force[n][d] = record[Record::force + d];
-    }
-    for (int k = 0; k < R; ++k) {
-      nodes.rotational_inertia[n * R + k] = record[Record::inertia + k];
-      nodes.spin_momentum[n * R + k] = record[Record::spin_momentum + k];
-      if (with_forces) nodes.moment[n * R + k] = record[Record::moment + k];
+  COSMPM_OMP_PARALLEL(s.threads, count) {
+    const Share share = static_share(count);
+    detail::add_pending_upper(pending, scattered, share.first, share.last);
+    for (Index n = share.first; n < share.last; ++n) {
+      const double* const record = scattered + n * size;
+      nodes.mass[n] = record[Record::mass];
+      if constexpr (State::transfer_type::affine) {
+        nodes.momentum[n] =
+            nodal_momentum(s, n, record + Record::momentum, record + Record::affine);
+      } else {
+        for (int d = 0; d < Dim; ++d) nodes.momentum[n][d] = record[Record::momentum + d];
+      }
+      for (int d = 0; d < Dim; ++d) {
+        if (with_forces) nodes.force[n][d] = record[Record::force + d];
+      }
+      for (int k = 0; k < R; ++k) {
+        nodes.rotational_inertia[n * R + k] = record[Record::inertia + k];
+        nodes.spin_momentum[n * R + k] = record[Record::spin_momentum + k];
+        if (with_forces) nodes.moment[n * R + k] = record[Record::moment + k];
+      }
     }
   }
 }
@@ -302,6 +354,7 @@ void map_forces_to_grid(State& s) {
   constexpr int forces = Dim + R;
   s.scatter.resize(std::max(s.scatter.size(), static_cast<std::size_t>(forces * count)));
   s.prescattered = false;
+  detail::discard_pending_upper(s);
   std::fill(s.scatter.begin(), s.scatter.begin() + forces * count, 0.0);
   require_start_stencils(s, "map_forces_to_grid");
   const auto& mass = s.particles.template get<particles::field::Mass>();

@@ -53,6 +53,7 @@ double* clear_remap_records(State& s) {
   constexpr auto all = static_cast<std::size_t>(State::scatter_record::all);
   s.scatter.resize(std::max(s.scatter.size(), all * nodes));
   s.prescattered = false;
+  discard_pending_upper(s);
   constexpr auto width = static_cast<std::size_t>(remap_components<State>);
   std::fill(s.scatter.begin(), s.scatter.begin() + static_cast<std::ptrdiff_t>(width * nodes), 0.0);
   return s.scatter.data();
@@ -61,24 +62,28 @@ double* clear_remap_records(State& s) {
 // The remapped node velocities (and spins) from the remap records, then contact (its
 // remapped-velocity phase, with the step's dt) and the boundary conditions.
 template <class State>
-void velocities_from_remap(State& s, const double* records, double dt) {
+void velocities_from_remap(State& s, double* records, double dt) {
   constexpr int Dim = State::dim;
   constexpr int R = State::rotational_dofs;
   constexpr int C = remap_components<State>;
   auto& nodes = s.nodes;
   const Index count = s.grid.node_count();
   const double empty = s.empty_node_mass();
-  COSMPM_OMP_PARALLEL_FOR(s.threads, count)  // the node loops' static shares
-  for (Index n = 0; n < count; ++n) {
-    if (nodes.mass[n] <= empty) {
-      nodes.velocity[n].setZero();
-      for (int k = 0; k < R; ++k) nodes.spin[n * R + k] = 0.0;
-      continue;
-    }
-    const double* const record = records + n * C;
-    nodes.velocity[n] = nodal_momentum(s, n, record, record + Dim + R) / nodes.mass[n];
-    for (int k = 0; k < R; ++k) {
-      nodes.spin[n * R + k] = record[Dim + k] / nodes.rotational_inertia[n * R + k];
+  const PendingUpper pending = take_pending_upper(s, C);
+  COSMPM_OMP_PARALLEL(s.threads, count) {
+    const Share share = static_share(count);  // the node loops' static shares
+    add_pending_upper(pending, records, share.first, share.last);
+    for (Index n = share.first; n < share.last; ++n) {
+      const double* const record = records + n * C;
+      if (nodes.mass[n] <= empty) {
+        nodes.velocity[n].setZero();
+        for (int k = 0; k < R; ++k) nodes.spin[n * R + k] = 0.0;
+        continue;
+      }
+      nodes.velocity[n] = nodal_momentum(s, n, record, record + Dim + R) / nodes.mass[n];
+      for (int k = 0; k < R; ++k) {
+        nodes.spin[n * R + k] = record[Dim + k] / nodes.rotational_inertia[n * R + k];
+      }
     }
   }
   correct_and_apply_conditions(s, nodes.velocity, nodes.spin, dt,
