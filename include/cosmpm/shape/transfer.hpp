@@ -168,19 +168,30 @@ COSMPM_ALWAYS_INLINE void scatter(
     double weight;
     std::array<double, Dim> gradient;
     s.row_factors(r, weight, gradient);
-    // Packs of the register width, then a pair, then single doubles.
     constexpr int P = pack_width;
-    constexpr int packed = N / P * P;
-    constexpr int paired = P > 2 ? packed + (N - packed) / 2 * 2 : packed;
-    COSMPM_UNROLL
-    for (int k = 0; k < packed; k += P)
-      detail::add_to_row<Pack<P>>(row, k, weight, gradient, along, across);
-    COSMPM_UNROLL
-    for (int k = packed; k < paired; k += 2)
-      detail::add_to_row<Pack<2>>(row, k, weight, gradient, along, across);
-    COSMPM_UNROLL
-    for (int k = paired; k < N; ++k)
-      detail::add_to_row<double>(row, k, weight, gradient, along, across);
+    if constexpr (R > 1 && R < P && P % R == 0) {
+      // A node's record in one smaller pack (2D MUSL's remap: two momenta): a pack across two
+      // nodes meets half of the next particle's store to the node it shares and waits for it
+      // to reach the cache; node by node the store is met whole and forwarded (fused MUSL
+      // Mohr-Coulomb step -2.4 %). Records of 3 or 5 doubles node by node took 2-3 % longer:
+      // more operations (docs/performance.md, "The remap node by node").
+      COSMPM_UNROLL
+      for (int i = 0; i < S; ++i)
+        detail::add_to_row<Pack<R>>(row, i * R, weight, gradient, along, across);
+    } else {
+      // Packs of the register width, then a pair, then single doubles.
+      constexpr int packed = N / P * P;
+      constexpr int paired = P > 2 ? packed + (N - packed) / 2 * 2 : packed;
+      COSMPM_UNROLL
+      for (int k = 0; k < packed; k += P)
+        detail::add_to_row<Pack<P>>(row, k, weight, gradient, along, across);
+      COSMPM_UNROLL
+      for (int k = packed; k < paired; k += 2)
+        detail::add_to_row<Pack<2>>(row, k, weight, gradient, along, across);
+      COSMPM_UNROLL
+      for (int k = paired; k < N; ++k)
+        detail::add_to_row<double>(row, k, weight, gradient, along, across);
+    }
   }
 }
 
