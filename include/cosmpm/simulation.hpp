@@ -198,6 +198,11 @@ class Simulation : detail::CompositionChecks<Dim, Kernel, Continuum, Contact, Sc
   void update_stress_and_map_to_grid(double dt) {
     stages::update_stress_and_map_to_grid(state_, dt);
   }
+  // Fused MUSL: velocity_gradient_from_grid(node_velocity, node_spin) too, in the same pass.
+  void update_stress_and_map_to_grid(double dt, const std::vector<Vec<Dim>>& node_velocity,
+                                     const std::vector<double>& node_spin = {}) {
+    stages::update_stress_and_map_to_grid(state_, dt, node_velocity, node_spin);
+  }
   // Particles that left the grid box leave the simulation (SimulationParameters::
   // stray_particles); step() calls it last.
   void handle_stray_particles() { stages::handle_stray_particles(state_); }

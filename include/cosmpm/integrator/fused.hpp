@@ -2,10 +2,10 @@
 // USL and MUSL with fewer particle passes per step: the pass that ends a step also maps the
 // particles to the grid for the next one (stages/fused_pass.hpp), and the next step takes the
 // node fields from those records; MUSL's grid-to-particle map also remaps the momenta in the
-// same pass. Opt-in: the nodal sums take the unfused schemes' terms in
-// another order, so results differ from USL's and MUSL's by rounding; they are the same on one
-// thread and on two, and the fused pass itself runs on at most two. The unfused schemes and
-// their stages stay as they are.
+// same pass, and its stress update gathers the velocity gradient in its own pass. Opt-in: the nodal
+// sums take the unfused schemes' terms in another order, so results differ from USL's and MUSL's by
+// rounding; they are the same on one thread and on two, and the fused pass itself runs on at most
+// two. The unfused schemes and their stages stay as they are.
 //
 // Between steps, take the particles for writing through Simulation::particles() (or
 // continuum(), engine()) each time: that call drops the records the last pass scattered. A
@@ -31,8 +31,7 @@ struct FusedMUSL {
     sim.map_to_grid_or_reuse();
     sim.update_grid(dt);
     sim.map_to_particles_and_remap(dt);
-    sim.velocity_gradient_from_grid(sim.nodes().velocity, sim.nodes().spin);
-    sim.update_stress_and_map_to_grid(dt);
+    sim.update_stress_and_map_to_grid(dt, sim.nodes().velocity, sim.nodes().spin);
   }
 };
 

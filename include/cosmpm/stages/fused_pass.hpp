@@ -7,7 +7,8 @@
 //
 // - USL, map_to_particles_and_grid: the grid-to-particle map with the stress update, then the
 //   particle's scatter at its new position.
-// - MUSL, update_stress_and_map_to_grid: stage 4b, in its runs of 64, then the scatter.
+// - MUSL, update_stress_and_map_to_grid: stage 4b (with the nodal fields given, 4a before it),
+//   in its runs of 64, then the scatter.
 // - MUSL, map_to_particles_and_remap: the grid-to-particle map, then the particle's remap of
 //   its new momenta at the same stencil, so the remap is no pass of its own.
 //
@@ -239,24 +240,22 @@ void map_to_particles_and_grid(State& s, double dt) {
   }
 }
 
-// Fused MUSL: update_stress(dt), and the particle-to-grid map of the next step in the same
-// pass.
+namespace detail {
+// Stage 4b (with 4a first when rate_records is set), then the next step's scatter, run by run.
 template <class State>
-void update_stress_and_map_to_grid(State& s, double dt) {
-  detail::require_rates(s, "update_stress_and_map_to_grid");
-  if constexpr (averages_volume<State>) average_volumetric_rate(s);
+void update_stress_and_map_to_grid(State& s, double dt, const double* rate_records) {
   const Index count = s.particles.size();
   const shape::StencilGrid<State::dim> stencil_grid(s.grid);
-  const detail::ScatterSources<State> from = detail::scatter_sources(s);
-  const detail::FusedHalfReport all = detail::over_halves<State::scatter_record::all>(
-      s, detail::clear_scatter_records<true>(s),
-      [&](Index first, Index last, double* records, detail::FusedHalfReport& r) {
-        for (Index begin = first; begin < last; begin += detail::update_run) {
-          const Index end = std::min(begin + detail::update_run, last);
-          detail::update_stress_run(s, begin, end - begin, dt, r.first_bad);
-          for (Index q = begin; q < end; ++q) {
-            detail::scatter_next(s, from, q, stencil_grid, records, r);
-          }
+  const ScatterSources<State> from = scatter_sources(s);
+  const FusedHalfReport all = over_halves<State::scatter_record::all>(
+      s, clear_scatter_records<true>(s),
+      [&](Index first, Index last, double* records, FusedHalfReport& r) {
+        for (Index begin = first; begin < last; begin += update_run) {
+          const Index end = std::min(begin + update_run, last);
+          // Before the scatter moves the run's stencils to the new positions.
+          if (rate_records != nullptr) rates_of_range(s, begin, end, stencil_grid, rate_records);
+          update_stress_run(s, begin, end - begin, dt, r.first_bad);
+          for (Index q = begin; q < end; ++q) scatter_next(s, from, q, stencil_grid, records, r);
         }
       });
   if (all.first_bad < count) {
@@ -264,6 +263,33 @@ void update_stress_and_map_to_grid(State& s, double dt) {
                                                                   s.clock);
   }
   s.prescattered = all.first_invalid == count;
+}
+}  // namespace detail
+
+// Fused MUSL: update_stress(dt), and the particle-to-grid map of the next step in the same
+// pass.
+template <class State>
+void update_stress_and_map_to_grid(State& s, double dt) {
+  detail::require_rates(s, "update_stress_and_map_to_grid");
+  if constexpr (averages_volume<State>) average_volumetric_rate(s);
+  detail::update_stress_and_map_to_grid(s, dt, nullptr);
+}
+
+// Fused MUSL: velocity_gradient_from_grid(node_velocity, node_spin), update_stress(dt) and the
+// next step's particle-to-grid map in one pass; each particle's arithmetic as in the separate
+// stages, so the same bits. A continuum that averages the volumetric rate over cells
+// (antilocking::FBar) needs every rate before any stress update: it runs the stages apart.
+template <class State>
+void update_stress_and_map_to_grid(State& s, double dt,
+                                   const std::vector<Vec<State::dim>>& node_velocity,
+                                   const std::vector<double>& node_spin) {
+  if constexpr (averages_volume<State>) {
+    velocity_gradient_from_grid(s, node_velocity, node_spin);
+    update_stress_and_map_to_grid(s, dt);
+  } else {
+    detail::update_stress_and_map_to_grid(
+        s, dt, detail::rate_records(s, node_velocity, node_spin, "update_stress_and_map_to_grid"));
+  }
 }
 
 }  // namespace cosmpm::stages

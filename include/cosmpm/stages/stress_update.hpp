@@ -136,26 +136,27 @@ COSMPM_ALWAYS_INLINE void rates_from_grid(State& s, Index p,
 }
 }  // namespace detail
 
-// Stage 4a: particle rates from a nodal velocity field (and the rotational rates, ignored by a
-// classical continuum), at the stencils of the start of the step.
+namespace detail {
+// The node records stage 4a gathers from: the velocities themselves for a classical continuum
+// (laid out as the records, no copy), else velocity and rotational rates copied into s.gather.
 template <class State>
-void velocity_gradient_from_grid(State& s, const std::vector<Vec<State::dim>>& node_velocity,
-                                 const std::vector<double>& node_spin) {
+const double* rate_records(State& s, const std::vector<Vec<State::dim>>& node_velocity,
+                           const std::vector<double>& node_spin, const char* where) {
   constexpr int Dim = State::dim;
   constexpr int R = State::rotational_dofs;
   using Record = typename State::gather_record;
   const Index nodes = s.grid.node_count();
   require(static_cast<Index>(node_velocity.size()) == nodes &&
               static_cast<Index>(node_spin.size()) == R * nodes,
-          "Simulation::velocity_gradient_from_grid: a nodal field does not match the grid's " +
+          std::string("Simulation::") + where + ": a nodal field does not match the grid's " +
               std::to_string(nodes) + " nodes");
+  require_start_stencils(s, where);
+  s.particle_rates.resize(static_cast<std::size_t>(s.particles.size()));
   constexpr int size = Record::with_gradient;  // per node: velocity and the rotational rates
-  const double* records = nullptr;
   if constexpr (size == Dim && sizeof(Vec<Dim>) == Dim * sizeof(double)) {
-    // Without rotational rates the velocities are laid out as the records: no copy, and no
-    // parallel region for it (about 5 us of a two-thread step here).
+    // No parallel region for a copy: about 5 us of a two-thread step here.
     static_assert(Record::velocity == 0);
-    records = node_velocity.data()->data();
+    return node_velocity.data()->data();
   } else {
     s.gather.resize(static_cast<std::size_t>(Record::all * nodes));
     COSMPM_OMP_PARALLEL_FOR(s.threads, nodes)  // the node loops' static shares
@@ -163,18 +164,38 @@ void velocity_gradient_from_grid(State& s, const std::vector<Vec<State::dim>>& n
       for (int d = 0; d < Dim; ++d) s.gather[n * size + Record::velocity + d] = node_velocity[n][d];
       for (int k = 0; k < R; ++k) s.gather[n * size + Record::spin + k] = node_spin[n * R + k];
     }
-    records = s.gather.data();
+    return s.gather.data();
   }
-  const shape::StencilGrid<Dim> stencil_grid(s.grid);
-  require_start_stencils(s, "velocity_gradient_from_grid");
+}
+
+// Stage 4a for particles first, ..., last - 1 on one thread: pack_width at a time from
+// `first`, then the rest one by one.
+template <class State>
+COSMPM_ALWAYS_INLINE void rates_of_range(State& s, Index first, Index last,
+                                         const shape::StencilGrid<State::dim>& stencil_grid,
+                                         const double* records) {
+  constexpr int W = pack_width;
+  Index p = first;
+  for (; p + W <= last; p += W) rates_from_grid<W>(s, p, stencil_grid, records);
+  for (; p < last; ++p) rates_from_grid<1>(s, p, stencil_grid, records);
+}
+}  // namespace detail
+
+// Stage 4a: particle rates from a nodal velocity field (and the rotational rates, ignored by a
+// classical continuum), at the stencils of the start of the step.
+template <class State>
+void velocity_gradient_from_grid(State& s, const std::vector<Vec<State::dim>>& node_velocity,
+                                 const std::vector<double>& node_spin) {
+  const double* const records =
+      detail::rate_records(s, node_velocity, node_spin, "velocity_gradient_from_grid");
+  const shape::StencilGrid<State::dim> stencil_grid(s.grid);
   const Index count = s.particles.size();
-  s.particle_rates.resize(static_cast<std::size_t>(count));
   // pack_width particles at a time, then the rest one by one.
   constexpr int W = pack_width;
   const Index packs = count / W;
   COSMPM_OMP_PARALLEL_FOR(s.threads, count)
   for (Index b = 0; b < packs; ++b) detail::rates_from_grid<W>(s, b * W, stencil_grid, records);
-  for (Index p = packs * W; p < count; ++p) detail::rates_from_grid<1>(s, p, stencil_grid, records);
+  detail::rates_of_range(s, packs * W, count, stencil_grid, records);
 }
 
 // Whether the continuum averages the volumetric strain rate over cells (antilocking::FBar).
