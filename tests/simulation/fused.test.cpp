@@ -297,10 +297,7 @@ namespace {
 template <class Sim>
 void check_one_pass_remap(Sim& two_stage, Sim& one_pass, int steps, const std::string& label) {
   const double dt = two_stage.time_step();
-  for (int i = 0; i < steps; ++i) {
-    two_stage.step(dt);
-    one_pass.step(dt);
-  }
+  run_side_by_side(two_stage, one_pass, steps);
   for (Sim* sim : {&two_stage, &one_pass}) {
     sim->map_to_grid(true);
     sim->update_grid(dt);
@@ -371,10 +368,7 @@ namespace {
 template <class Sim>
 void check_one_pass_rates(Sim& apart, Sim& one_pass, int steps, const std::string& label) {
   const double dt = apart.time_step();
-  for (int i = 0; i < steps; ++i) {
-    apart.step(dt);
-    one_pass.step(dt);
-  }
+  run_side_by_side(apart, one_pass, steps);
   for (Sim* sim : {&apart, &one_pass}) {
     sim->map_to_grid_or_reuse();
     sim->update_grid(dt);
