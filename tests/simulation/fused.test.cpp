@@ -76,6 +76,14 @@ Sim vibrating_bar(const typename Sim::continuum_type& continuum, int threads) {
   return sim;
 }
 
+// The elastic Cosserat continuum of the polar checks.
+using Polar = continuum::Cosserat<material::CosseratElastic<double>>;
+const Polar& polar_bar() {
+  static const Polar polar(material::CosseratElastic<double>(2e5, 0.25, 8e4, 0.01),
+                           {.micro_inertia = 1.25e-5});
+  return polar;
+}
+
 const Soil& corn() {
   static const Soil soil({.youngs_modulus = 2e5,
                           .poisson_ratio = 0.25,
@@ -246,11 +254,9 @@ namespace {
 template <class PlainScheme, class FusedScheme>
 void check_polar_and_apic(const std::string& label) {
   SUBCASE("Cosserat continuum") {
-    using Polar = continuum::Cosserat<material::CosseratElastic<double>>;
     using Plain = Simulation<2, shape::Linear, Polar, contact::SingleField, PlainScheme>;
     using Fused = Simulation<2, shape::Linear, Polar, contact::SingleField, FusedScheme>;
-    const Polar polar(material::CosseratElastic<double>(2e5, 0.25, 8e4, 0.01),
-                      {.micro_inertia = 1.25e-5});
+    const Polar& polar = polar_bar();
     Plain plain = vibrating_bar<Plain>(polar, 1);
     Fused fused = vibrating_bar<Fused>(polar, 1);
     Fused fused_two = vibrating_bar<Fused>(polar, 2);
@@ -337,10 +343,8 @@ TEST_CASE("map_to_particles_and_remap: as map_to_particles then remap_momentum, 
     check_one_pass_remap(two_stage, one_pass, 40, "Mohr-Coulomb");
   }
   SUBCASE("Cosserat continuum (spin remapped)") {
-    using Polar = continuum::Cosserat<material::CosseratElastic<double>>;
     using Sim = Simulation<2, shape::Linear, Polar, contact::SingleField, integrator::MUSL>;
-    const Polar polar(material::CosseratElastic<double>(2e5, 0.25, 8e4, 0.01),
-                      {.micro_inertia = 1.25e-5});
+    const Polar& polar = polar_bar();
     Sim two_stage = vibrating_bar<Sim>(polar, 1);
     Sim one_pass = vibrating_bar<Sim>(polar, 2);
     check_one_pass_remap(two_stage, one_pass, 40, "Cosserat");
@@ -415,10 +419,8 @@ TEST_CASE(
     CHECK(std::count_if(state.begin(), state.end(), [](const auto& s) { return s.plastic; }) > 0);
   }
   SUBCASE("Cosserat continuum (spin and its gradient)") {
-    using Polar = continuum::Cosserat<material::CosseratElastic<double>>;
     using Sim = Simulation<2, shape::Linear, Polar, contact::SingleField, integrator::FusedMUSL>;
-    const Polar polar(material::CosseratElastic<double>(2e5, 0.25, 8e4, 0.01),
-                      {.micro_inertia = 1.25e-5});
+    const Polar& polar = polar_bar();
     Sim apart = vibrating_bar<Sim>(polar, 1);
     Sim one_pass = vibrating_bar<Sim>(polar, 2);
     check_one_pass_rates(apart, one_pass, 40, "Cosserat");

@@ -241,9 +241,10 @@ void map_to_particles_and_grid(State& s, double dt) {
 }
 
 namespace detail {
-// Stage 4b (with 4a first when rate_records is set), then the next step's scatter, run by run.
+// Stage 4b (with 4a first, from these node records, when velocity_records is set), then the
+// next step's scatter, run by run.
 template <class State>
-void update_stress_and_map_to_grid(State& s, double dt, const double* rate_records) {
+void update_stress_and_map_to_grid(State& s, double dt, const double* velocity_records) {
   const Index count = s.particles.size();
   const shape::StencilGrid<State::dim> stencil_grid(s.grid);
   const ScatterSources<State> from = scatter_sources(s);
@@ -253,7 +254,8 @@ void update_stress_and_map_to_grid(State& s, double dt, const double* rate_recor
         for (Index begin = first; begin < last; begin += update_run) {
           const Index end = std::min(begin + update_run, last);
           // Before the scatter moves the run's stencils to the new positions.
-          if (rate_records != nullptr) rates_of_range(s, begin, end, stencil_grid, rate_records);
+          if (velocity_records != nullptr)
+            rates_of_range(s, begin, end, stencil_grid, velocity_records);
           update_stress_run(s, begin, end - begin, dt, r.first_bad);
           for (Index q = begin; q < end; ++q) scatter_next(s, from, q, stencil_grid, records, r);
         }
