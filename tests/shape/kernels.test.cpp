@@ -5,9 +5,12 @@
 #include <doctest/doctest.h>
 
 #include <array>
+#include <bit>
 #include <cmath>
+#include <cstdint>
 #include <vector>
 
+#include "cosmpm/core/pack.hpp"
 #include "cosmpm/shape.hpp"
 #include "shape_test_support.hpp"
 
@@ -261,5 +264,38 @@ TEST_CASE_TEMPLATE("shape kernels: the float instantiation keeps the identities"
     CHECK(std::abs(sum_g) < 1e-5f);
     CHECK(std::abs(sum_wx - xi) < 1e-5f);
     CHECK(std::abs(sum_gx - 1.0f) < 1e-5f);
+  }
+}
+
+TEST_CASE_TEMPLATE("shape kernels: evaluate_lanes gives each lane evaluate's bits", K, Linear,
+                   QuadraticBSpline, CubicBSpline) {
+  // Each lane does evaluate's arithmetic in the same order (the B-splines' ghosts folded
+  // lane by lane), so without fused multiply-adds (the tests' target) the bits agree. Axes of
+  // as many nodes as the support (the B-splines fold both ghosts within one or two cells), one
+  // more, and 9; the sample points include both edges, the first and last cells and the
+  // quadratic's switch points at the cell midpoints.
+  constexpr int W = cosmpm::pack_width;
+  using P = cosmpm::Pack<W>;
+  for (const Index n : {Index{K::support}, Index{K::support + 1}, Index{9}}) {
+    const auto points = sample_points(n, 29u, 400);
+    for (std::size_t p = 0; p + W <= points.size(); p += W) {
+      const P xi =
+          cosmpm::make_pack<W>([&](int l) { return points[p + static_cast<std::size_t>(l)]; });
+      std::array<P, K::support> w, g;
+      K::evaluate_lanes(xi, n, w, g);
+      for (int l = 0; l < W; ++l) {
+        std::array<double, K::support> w1{}, g1{};
+        const double x = cosmpm::lane<W>(xi, l);
+        K::evaluate(x, 0.0, n, w1, g1);
+        CAPTURE(n);
+        CAPTURE(x);
+        for (int i = 0; i < K::support; ++i) {
+          CHECK(std::bit_cast<std::uint64_t>(cosmpm::lane<W>(w[i], l)) ==
+                std::bit_cast<std::uint64_t>(w1[i]));
+          CHECK(std::bit_cast<std::uint64_t>(cosmpm::lane<W>(g[i], l)) ==
+                std::bit_cast<std::uint64_t>(g1[i]));
+        }
+      }
+    }
   }
 }

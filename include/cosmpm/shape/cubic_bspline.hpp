@@ -8,6 +8,7 @@
 // derivative at the edge (a natural spline).
 #include <array>
 
+#include "cosmpm/core/pack.hpp"
 #include "cosmpm/core/types.hpp"
 #include "cosmpm/shape/concept.hpp"
 #include "cosmpm/shape/detail/ghost_fold.hpp"
@@ -35,6 +36,31 @@ struct CubicBSpline {
     gradients = {T(-0.5) * s2, T(-2) * t + T(1.5) * t2, T(2) * s - T(1.5) * s2, T(0.5) * t2};
     const Index first = cell - 1;
     return detail::fold_into_grid(first, node_count, weights, gradients);
+  }
+
+  // The weights for the lanes of a pack P of doubles (GCC/Clang vector extensions), each lane
+  // evaluate's arithmetic in the same order, the ghost folded where a lane's stencil sticks
+  // out of the grid; the first nodes come from evaluate. Cells fit in int.
+  template <class P>
+  static void evaluate_lanes(const P& xi, Index node_count, std::array<P, 4>& weights,
+                             std::array<P, 4>& gradients) {
+    constexpr int lanes = static_cast<int>(sizeof(P) / sizeof(double));
+    // xi >= 0: truncation is floor.
+    const P whole = __builtin_convertvector(__builtin_convertvector(xi, IntPack<lanes>), P);
+    const P last_cell = P{} + static_cast<double>(node_count - 2);
+    const P cell = whole < last_cell ? whole : last_cell;
+    const P t = xi - cell;
+    const P s = 1.0 - t;
+    const P t2 = t * t;
+    const P s2 = s * s;
+    constexpr double sixth = 1.0 / 6.0;
+    weights = {sixth * s2 * s, 2.0 / 3.0 - t2 + 0.5 * t2 * t, 2.0 / 3.0 - s2 + 0.5 * s2 * s,
+               sixth * t2 * t};
+    gradients = {-0.5 * s2, -2.0 * t + 1.5 * t2, 2.0 * s - 1.5 * s2, 0.5 * t2};
+    const auto below = cell < 1.0;                                  // first < 0
+    const auto above = cell > static_cast<double>(node_count - 3);  // first > count - 4
+    detail::fold_lanes_into_grid(below, above, weights);
+    detail::fold_lanes_into_grid(below, above, gradients);
   }
 };
 

@@ -71,6 +71,58 @@ COSMPM_ALWAYS_INLINE void scatter_next(State& s, const ScatterSources<State>& fr
                                 records);
 }
 
+// Kernels whose stencils scatter_next_pack computes side by side: those that evaluate whole
+// packs (Linear, the B-splines) and need no half-width check.
+template <class State>
+inline constexpr bool packs_next_stencils = requires(
+    const Pack<pack_width>& x, std::array<Pack<pack_width>, State::kernel_type::support>& f) {
+  State::kernel_type::evaluate_lanes(x, Index{}, f, f);
+}
+&&!shape::UsesHalfWidth<typename State::kernel_type>;
+
+// scatter_next for particles p, ..., p + W - 1 in that order, their stencils computed side by
+// side with each lane's arithmetic as SeparableStencil::try_compute's, so the same records. A
+// pack with a lane outside the valid range goes lane by lane, which reports it.
+template <int W, class State>
+COSMPM_ALWAYS_INLINE void scatter_next_pack(State& s, const ScatterSources<State>& from, Index p,
+                                            const shape::StencilGrid<State::dim>& stencil_grid,
+                                            double* records, FusedHalfReport& report) {
+  constexpr int Dim = State::dim;
+  using K = typename State::kernel_type;
+  using P = Pack<W>;
+  if constexpr (W > 1 && packs_next_stencils<State> &&
+                K::support <= shape::StencilGrid<Dim>::tabled_support) {
+    std::array<P, Dim> xi;
+    bool valid = true;
+    for (int d = 0; d < Dim; ++d) {
+      const P x = make_pack<W>([&](int l) { return from.x[p + l][d]; });
+      xi[d] = (x - stencil_grid.origin[d]) * stencil_grid.inverse_cell_size[d];
+      valid &=
+          all_lanes<W>((xi[d] >= 0.0) & (xi[d] <= stencil_grid.upper_for_support[K::support][d]));
+    }
+    if (valid) [[likely]] {
+      for (int d = 0; d < Dim; ++d) {
+        const P last = P{} + stencil_grid.last[d];
+        const P in_cells = xi[d] < last ? xi[d] : last;
+        for (int l = 0; l < W; ++l) s.stencil_cells[p + l][d] = lane<W>(in_cells, l);
+      }
+      PackedStencilOf<State, W> st;
+      st.compute_from_cell_units(
+          stencil_grid, [&](int l) -> const Vec<Dim>& { return s.stencil_cells[p + l]; },
+          [&](int l) -> const Vec<Dim>& { return from.half[p + l]; });
+      for (int l = 0; l < W; ++l) {
+        const Index q = p + l;
+        report.lowest_node = std::min(report.lowest_node, st.first_node[l]);
+        report.highest_node = std::max(report.highest_node, st.first_node[l]);
+        scatter_particle<true, State>(s.particles, from, q, st.lane(l), s.stencil_cells[q],
+                                      stencil_grid, records);
+      }
+      return;
+    }
+  }
+  for (int l = 0; l < W; ++l) scatter_next(s, from, p + l, stencil_grid, records, report);
+}
+
 // Runs visit(first, last, records, report) over the two halves of the particles, on up to two
 // threads: the first half into `lower` (zeroed, in s.scatter, C doubles per node), the second
 // into s.scatter_upper, left pending for the node pass that reads the records
@@ -133,9 +185,7 @@ void map_to_particles_and_grid(State& s, double dt) {
                          PackedStencilOf<State, W> st;
                          map_from_grid<W, true, update>(s, p, pass, st, r.first_outside,
                                                         r.first_bad, r.first_moved);
-                         for (int l = 0; l < W; ++l) {
-                           scatter_next(s, from, p + l, pass.stencil_grid, records, r);
-                         }
+                         scatter_next_pack<W>(s, from, p, pass.stencil_grid, records, r);
                        }
                        for (; p < last; ++p) {
                          PackedStencilOf<State, 1> st;
@@ -213,9 +263,13 @@ void map_to_grid_or_reuse(State& s) {
     const detail::FusedHalfReport all = detail::over_halves<State::scatter_record::all>(
         s, detail::clear_scatter_records<true>(s),
         [&](Index first, Index last, double* records, detail::FusedHalfReport& r) {
-          for (Index q = first; q < last; ++q) {
-            detail::scatter_next(s, from, q, stencil_grid, records, r);
-          }
+          // The fused passes' grouping (packs from the half's start, the rest one by one), so
+          // the same bits where the compiler contracts multiply-adds (-march=native).
+          constexpr int W = pack_width;
+          Index q = first;
+          for (; q + W <= last; q += W)
+            detail::scatter_next_pack<W>(s, from, q, stencil_grid, records, r);
+          for (; q < last; ++q) detail::scatter_next(s, from, q, stencil_grid, records, r);
         });
     if (all.first_invalid < count) {
       typename State::stencil_type st;  // throws, naming the particle's position
@@ -257,7 +311,10 @@ void update_stress_and_map_to_grid(State& s, double dt, const double* velocity_r
           if (velocity_records != nullptr)
             rates_of_range(s, begin, end, stencil_grid, velocity_records);
           update_stress_run(s, begin, end - begin, dt, r.first_bad);
-          for (Index q = begin; q < end; ++q) scatter_next(s, from, q, stencil_grid, records, r);
+          constexpr int W = pack_width;
+          Index q = begin;
+          for (; q + W <= end; q += W) scatter_next_pack<W>(s, from, q, stencil_grid, records, r);
+          for (; q < end; ++q) scatter_next(s, from, q, stencil_grid, records, r);
         }
       });
   if (all.first_bad < count) {

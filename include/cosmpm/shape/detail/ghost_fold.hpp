@@ -64,4 +64,24 @@ inline Index fold_into_grid(Index first, Index node_count, std::array<T, S>& wei
   return first;
 }
 
+// fold_into_grid for the lanes of a pack P of doubles (GCC/Clang vector extensions): the lanes
+// of `below` fold their lower ghost, those of `above` their upper one, each with the scalar
+// fold's arithmetic; the other lanes keep their values.
+template <class P, class Mask, std::size_t S>
+inline void fold_lanes_into_grid(const Mask& below, const Mask& above, std::array<P, S>& v) {
+  static_assert(S >= 3, "a folded stencil needs the ghost, the edge node and an inner node");
+  const P zero{};
+  std::array<P, S> lower, upper;
+  for (std::size_t k = 0; k + 1 < S; ++k) {
+    lower[k] = v[k + 1];
+    upper[k + 1] = v[k];
+  }
+  lower[S - 1] = zero;
+  upper[0] = zero;
+  lower[0] += 2.0 * v[0];
+  lower[1] -= v[0];
+  upper[S - 1] += 2.0 * v[S - 1];
+  upper[S - 2] -= v[S - 1];
+  for (std::size_t k = 0; k < S; ++k) v[k] = below ? lower[k] : (above ? upper[k] : v[k]);
+}
 }  // namespace cosmpm::shape::detail
