@@ -12,6 +12,7 @@
 #include "cosmpm/core/types.hpp"
 #include "cosmpm/shape/concept.hpp"
 #include "cosmpm/shape/detail/ghost_fold.hpp"
+#include "cosmpm/shape/detail/lanes.hpp"
 
 namespace cosmpm::shape {
 
@@ -44,11 +45,7 @@ struct CubicBSpline {
   template <class P>
   static void evaluate_lanes(const P& xi, Index node_count, std::array<P, 4>& weights,
                              std::array<P, 4>& gradients) {
-    constexpr int lanes = static_cast<int>(sizeof(P) / sizeof(double));
-    // xi >= 0: truncation is floor.
-    const P whole = __builtin_convertvector(__builtin_convertvector(xi, IntPack<lanes>), P);
-    const P last_cell = P{} + static_cast<double>(node_count - 2);
-    const P cell = whole < last_cell ? whole : last_cell;
+    const P cell = detail::cell_lanes(xi, node_count);
     const P t = xi - cell;
     const P s = 1.0 - t;
     const P t2 = t * t;

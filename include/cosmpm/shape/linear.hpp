@@ -6,6 +6,7 @@
 #include "cosmpm/core/pack.hpp"
 #include "cosmpm/core/types.hpp"
 #include "cosmpm/shape/concept.hpp"
+#include "cosmpm/shape/detail/lanes.hpp"
 
 namespace cosmpm::shape {
 
@@ -28,18 +29,11 @@ struct Linear {
   }
 
   // The weights for the lanes of a pack P of W doubles (GCC/Clang vector extensions), each
-  // lane its own particle; the cells come from evaluate. Converting the whole pack at once
-  // takes a few instructions where lane by lane it took a dozen per lane and axis. Cells fit
-  // in int.
+  // lane its own particle; the cells come from evaluate. Cells fit in int.
   template <class P>
   static void evaluate_lanes(const P& xi, Index node_count, std::array<P, 2>& weights,
                              std::array<P, 2>& gradients) {
-    constexpr int lanes = static_cast<int>(sizeof(P) / sizeof(double));
-    // xi >= 0: truncation is floor.
-    const P whole = __builtin_convertvector(__builtin_convertvector(xi, IntPack<lanes>), P);
-    const P last_cell = P{} + static_cast<double>(node_count - 2);
-    const P cell = whole < last_cell ? whole : last_cell;
-    const P t = xi - cell;
+    const P t = xi - detail::cell_lanes(xi, node_count);
     weights = {1.0 - t, t};
     gradients = {P{} - 1.0, P{} + 1.0};
   }

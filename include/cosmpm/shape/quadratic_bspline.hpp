@@ -12,6 +12,7 @@
 #include "cosmpm/core/types.hpp"
 #include "cosmpm/shape/concept.hpp"
 #include "cosmpm/shape/detail/ghost_fold.hpp"
+#include "cosmpm/shape/detail/lanes.hpp"
 
 namespace cosmpm::shape {
 
@@ -38,9 +39,7 @@ struct QuadraticBSpline {
   template <class P>
   static void evaluate_lanes(const P& xi, Index node_count, std::array<P, 3>& weights,
                              std::array<P, 3>& gradients) {
-    constexpr int lanes = static_cast<int>(sizeof(P) / sizeof(double));
-    // The nearest node, first + 1 (xi >= 0: truncation is floor).
-    const P nearest = __builtin_convertvector(__builtin_convertvector(xi + 0.5, IntPack<lanes>), P);
+    const P nearest = detail::floor_lanes(xi + 0.5);  // the nearest node, first + 1
     const P d = xi - nearest;
     const P left = 0.5 - d;
     const P right = 0.5 + d;
