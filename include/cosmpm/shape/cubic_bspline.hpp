@@ -8,7 +8,6 @@
 // derivative at the edge (a natural spline).
 #include <array>
 
-#include "cosmpm/core/pack.hpp"
 #include "cosmpm/core/types.hpp"
 #include "cosmpm/shape/concept.hpp"
 #include "cosmpm/shape/detail/ghost_fold.hpp"

@@ -8,7 +8,6 @@
 // (detail/ghost_fold.hpp), which makes the basis linear in the half cell at the edge.
 #include <array>
 
-#include "cosmpm/core/pack.hpp"
 #include "cosmpm/core/types.hpp"
 #include "cosmpm/shape/concept.hpp"
 #include "cosmpm/shape/detail/ghost_fold.hpp"

@@ -123,6 +123,20 @@ COSMPM_ALWAYS_INLINE void scatter_next_pack(State& s, const ScatterSources<State
   for (int l = 0; l < W; ++l) scatter_next(s, from, p + l, stencil_grid, records, report);
 }
 
+// scatter_next for particles first, ..., last - 1: packs from `first`, the rest one by one. The
+// fused USL pass groups its particles the same way; a fresh scatter must too, so that it repeats
+// the pass's bits where the compiler contracts multiply-adds (-march=native).
+template <class State>
+COSMPM_ALWAYS_INLINE void scatter_next_range(State& s, const ScatterSources<State>& from,
+                                             Index first, Index last,
+                                             const shape::StencilGrid<State::dim>& stencil_grid,
+                                             double* records, FusedHalfReport& report) {
+  constexpr int W = pack_width;
+  Index q = first;
+  for (; q + W <= last; q += W) scatter_next_pack<W>(s, from, q, stencil_grid, records, report);
+  for (; q < last; ++q) scatter_next(s, from, q, stencil_grid, records, report);
+}
+
 // Runs visit(first, last, records, report) over the two halves of the particles, on up to two
 // threads: the first half into `lower` (zeroed, in s.scatter, C doubles per node), the second
 // into s.scatter_upper, left pending for the node pass that reads the records
@@ -263,13 +277,7 @@ void map_to_grid_or_reuse(State& s) {
     const detail::FusedHalfReport all = detail::over_halves<State::scatter_record::all>(
         s, detail::clear_scatter_records<true>(s),
         [&](Index first, Index last, double* records, detail::FusedHalfReport& r) {
-          // The fused passes' grouping (packs from the half's start, the rest one by one), so
-          // the same bits where the compiler contracts multiply-adds (-march=native).
-          constexpr int W = pack_width;
-          Index q = first;
-          for (; q + W <= last; q += W)
-            detail::scatter_next_pack<W>(s, from, q, stencil_grid, records, r);
-          for (; q < last; ++q) detail::scatter_next(s, from, q, stencil_grid, records, r);
+          detail::scatter_next_range(s, from, first, last, stencil_grid, records, r);
         });
     if (all.first_invalid < count) {
       typename State::stencil_type st;  // throws, naming the particle's position
@@ -311,10 +319,7 @@ void update_stress_and_map_to_grid(State& s, double dt, const double* velocity_r
           if (velocity_records != nullptr)
             rates_of_range(s, begin, end, stencil_grid, velocity_records);
           update_stress_run(s, begin, end - begin, dt, r.first_bad);
-          constexpr int W = pack_width;
-          Index q = begin;
-          for (; q + W <= end; q += W) scatter_next_pack<W>(s, from, q, stencil_grid, records, r);
-          for (; q < end; ++q) scatter_next(s, from, q, stencil_grid, records, r);
+          scatter_next_range(s, from, begin, end, stencil_grid, records, r);
         }
       });
   if (all.first_bad < count) {
