@@ -271,7 +271,7 @@ COSMPM_ALWAYS_INLINE void update_stress_run(State& s, Index begin, Index size, d
   std::array<strain_type, update_run> increment;
   std::array<double, update_run> volume_ratio;
   // The deformation before the model's call, which reads neither F nor the volume: MUSL's
-  // Cosserat step ran 8-9 % faster so than with it after the call (docs/performance.md).
+  // Cosserat step runs 8-9 % faster than with it after the call (docs/performance.md).
   for (Index k = 0; k < size; ++k) {
     const Index p = begin + k;
     increment[k] = Continuum::rotate_and_increment(s.particle_rates[p], dt, stress[p]);
