@@ -22,6 +22,7 @@
 #include "cosmpm/continuum/objective_update.hpp"
 #include "cosmpm/continuum/particle_fields.hpp"
 #include "cosmpm/continuum/rates.hpp"
+#include "cosmpm/core/compiler.hpp"
 #include "cosmpm/core/error.hpp"
 #include "cosmpm/core/types.hpp"
 #include "cosmpm/grid/boundary.hpp"
@@ -99,26 +100,36 @@ requires(Model::is_cosserat&& material::dimension_of<Model> == 2) class Cosserat
   static strain_type rotate_and_increment(const rates_type<2>& rates, double dt,
                                           stress_type& stress) {
     const Mat<2>& L = rates.velocity_gradient;
-    const double w = 0.5 * (L(0, 1) - L(1, 0)) * dt;
-    const double sxx = stress[0], syy = stress[1], sxy = stress[3], syx = stress[4];
+    const auto values = rotate_and_increment_values(
+        std::array<std::array<double, 2>, 2>{{{L(0, 0), L(0, 1)}, {L(1, 0), L(1, 1)}}},
+        rates.spin[0], std::array<double, 2>{rates.spin_gradient[0][0], rates.spin_gradient[0][1]},
+        dt, stress);
+    strain_type increment;
+    for (int c = 0; c < 7; ++c) increment[c] = values[c];
+    return increment;
+  }
+
+  // rotate_and_increment on a double or on packs of several particles' values (lane l of every
+  // value belongs to one particle), the stress indexable by component: the one place the
+  // arithmetic is written.
+  template <class Value, class Stress>
+  COSMPM_ALWAYS_INLINE static std::array<Value, 7> rotate_and_increment_values(
+      const std::array<std::array<Value, 2>, 2>& L, const Value& spin,
+      const std::array<Value, 2>& spin_gradient, double dt, Stress& stress) {
+    const Value w = 0.5 * (L[0][1] - L[1][0]) * dt;
+    const Value sxx = stress[0], syy = stress[1], sxy = stress[3], syx = stress[4];
     // Tensor S with S(0,1) = s_xy, S(1,0) = s_yx: (W S - S W) entries.
     stress[0] = sxx + w * (syx + sxy);
     stress[1] = syy - w * (sxy + syx);
     stress[3] = sxy + w * (syy - sxx);
     stress[4] = syx + w * (syy - sxx);
-    const double m1 = stress[5], m2 = stress[6];
+    const Value m1 = stress[5], m2 = stress[6];
     stress[5] = m1 + w * m2;
     stress[6] = m2 - w * m1;
-
-    strain_type increment;
-    increment[0] = L(0, 0) * dt;
-    increment[1] = L(1, 1) * dt;
-    increment[2] = 0.0;
-    increment[3] = (L(1, 0) - rates.spin[0]) * dt;  // du_y/dx - omega_3
-    increment[4] = (L(0, 1) + rates.spin[0]) * dt;  // du_x/dy + omega_3
-    increment[5] = rates.spin_gradient[0][0] * dt;
-    increment[6] = rates.spin_gradient[0][1] * dt;
-    return increment;
+    const Value yx = (L[1][0] - spin) * dt;  // du_y/dx - omega_3
+    const Value xy = (L[0][1] + spin) * dt;  // du_x/dy + omega_3
+    const Value curvature_x = spin_gradient[0] * dt, curvature_y = spin_gradient[1] * dt;
+    return {L[0][0] * dt, L[1][1] * dt, Value{}, yx, xy, curvature_x, curvature_y};
   }
   static void accumulate_strain(strain_type& strain, const strain_type& increment) {
     strain += increment;

@@ -14,6 +14,7 @@
 #include "cosmpm/core/compiler.hpp"
 #include "cosmpm/core/error.hpp"
 #include "cosmpm/core/pack.hpp"
+#include "cosmpm/core/pack_records.hpp"
 #include "cosmpm/core/types.hpp"
 #include "cosmpm/grid/grid.hpp"
 #include "cosmpm/shape/concept.hpp"
@@ -189,13 +190,16 @@ struct PackedStencil : StencilFactors<Dim, K, Pack<W>> {
       one[l].compute_from_cell_units(grid, xi(l), half_width(l));
       first_node[l] = one[l].first_node;
     }
+    constexpr bool by_lanes = W > 1 && requires(const P& x, std::array<P, support>& f) {
+      K::evaluate_lanes(x, Index{}, f, f);
+    };
+    [[maybe_unused]] std::array<P, Dim> xi_lanes;
+    if constexpr (by_lanes)
+      xi_lanes = load_by_component<W, Dim>([&](int l) { return xi(l).data(); });
     COSMPM_UNROLL
     for (int d = 0; d < Dim; ++d) {
-      if constexpr (W > 1 && requires(const P& x, std::array<P, support>& f) {
-                      K::evaluate_lanes(x, Index{}, f, f);
-                    }) {
-        K::evaluate_lanes(make_pack<W>([&](int l) { return xi(l)[d]; }), grid.nodes[d], w[d],
-                          dw[d]);
+      if constexpr (by_lanes) {
+        K::evaluate_lanes(xi_lanes[d], grid.nodes[d], w[d], dw[d]);
         COSMPM_UNROLL
         for (int i = 0; i < support; ++i) dw[d][i] *= grid.inverse_cell_size[d];
       } else {

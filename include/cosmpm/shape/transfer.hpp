@@ -10,6 +10,7 @@
 
 #include "cosmpm/core/compiler.hpp"
 #include "cosmpm/core/pack.hpp"
+#include "cosmpm/core/pack_records.hpp"
 #include "cosmpm/core/types.hpp"
 #include "cosmpm/shape/concept.hpp"
 #include "cosmpm/shape/separable.hpp"
@@ -91,10 +92,25 @@ COSMPM_ALWAYS_INLINE Gathered<Dim, C, G> gather(const SeparableStencil<Dim, K>& 
 template <int C, int G, int Dim, Kernel K, int W>
 COSMPM_ALWAYS_INLINE Gathered<Dim, C, G, Pack<W>> gather(const PackedStencil<Dim, K, W>& s,
                                                          const double* records) {
-  return detail::gather_rows<C, G>(s, [&](int r, int i, int c) {
-    const Index offset = s.row_offset(r);
-    return make_pack<W>([&](int l) { return records[(s.first_node[l] + offset) * C + i * C + c]; });
-  });
+  if constexpr (W == 4 && C >= 2 && cosmpm::detail::transposes_records) {
+    // Each lane's whole node record at once, transposed in registers (core/pack_records.hpp).
+    std::array<std::array<Pack<W>, C>, PackedStencil<Dim, K, W>::rows * K::support> by_node;
+    for (int r = 0; r < PackedStencil<Dim, K, W>::rows; ++r) {
+      const Index offset = s.row_offset(r);
+      for (int i = 0; i < K::support; ++i) {
+        by_node[r * K::support + i] = load_by_component<W, C>(
+            [&](int l) { return records + (s.first_node[l] + offset + i) * C; });
+      }
+    }
+    return detail::gather_rows<C, G>(
+        s, [&](int r, int i, int c) { return by_node[r * K::support + i][c]; });
+  } else {
+    return detail::gather_rows<C, G>(s, [&](int r, int i, int c) {
+      const Index offset = s.row_offset(r);
+      return make_pack<W>(
+          [&](int l) { return records[(s.first_node[l] + offset) * C + i * C + c]; });
+    });
+  }
 }
 
 namespace detail {

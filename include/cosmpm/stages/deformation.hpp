@@ -5,6 +5,7 @@
 
 #include "cosmpm/core/compiler.hpp"
 #include "cosmpm/core/pack.hpp"
+#include "cosmpm/core/pack_records.hpp"
 #include "cosmpm/core/types.hpp"
 #include "cosmpm/particles/fields.hpp"
 
@@ -30,19 +31,24 @@ COSMPM_ALWAYS_INLINE Pack<W> update_deformation(Store& particles, Index p,
                                                 double dt) {
   using P = Pack<W>;
   auto& F = particles.template get<particles::field::DeformationGradient<Dim>>();
-  std::array<std::array<P, Dim>, Dim> old, updated;
-  for (int i = 0; i < Dim; ++i) {
-    for (int j = 0; j < Dim; ++j) old[i][j] = make_pack<W>([&](int l) { return F[p + l](i, j); });
-  }
+  // F(i, j) is component i + Dim j of a particle's record (column-major).
+  constexpr int C = Dim * Dim;
+  const auto record = [&](int l) { return F[p + l].data(); };
+  const std::array<P, C> old = load_by_component<W, C>(record);
+  std::array<P, C> updated;
   for (int i = 0; i < Dim; ++i) {
     for (int j = 0; j < Dim; ++j) {
-      P lf = L[i][0] * old[0][j];
-      for (int k = 1; k < Dim; ++k) lf += L[i][k] * old[k][j];
-      updated[i][j] = old[i][j] + dt * lf;
-      for (int l = 0; l < W; ++l) F[p + l](i, j) = lane<W>(updated[i][j], l);
+      P lf = L[i][0] * old[0 + Dim * j];
+      for (int k = 1; k < Dim; ++k) lf += L[i][k] * old[k + Dim * j];
+      updated[i + Dim * j] = old[i + Dim * j] + dt * lf;
     }
   }
-  const P J = determinant<Dim>(updated);
+  store_by_component<W, C>(record, updated);
+  std::array<std::array<P, Dim>, Dim> a;
+  for (int i = 0; i < Dim; ++i) {
+    for (int j = 0; j < Dim; ++j) a[i][j] = updated[i + Dim * j];
+  }
+  const P J = determinant<Dim>(a);
   const auto& initial_volume = particles.template get<particles::field::InitialVolume>();
   auto& volume = particles.template get<particles::field::Volume>();
   const P V = J * make_pack<W>([&](int l) { return initial_volume[p + l]; });

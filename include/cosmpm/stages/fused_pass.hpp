@@ -29,6 +29,7 @@
 
 #include "cosmpm/core/compiler.hpp"
 #include "cosmpm/core/pack.hpp"
+#include "cosmpm/core/pack_records.hpp"
 #include "cosmpm/core/parallel.hpp"
 #include "cosmpm/core/types.hpp"
 #include "cosmpm/particles/fields.hpp"
@@ -94,18 +95,21 @@ COSMPM_ALWAYS_INLINE void scatter_next_pack(State& s, const ScatterSources<State
                 K::support <= shape::StencilGrid<Dim>::tabled_support) {
     std::array<P, Dim> xi;
     bool valid = true;
+    const std::array<P, Dim> x_now =
+        load_by_component<W, Dim>([&](int l) { return from.x[p + l].data(); });
     for (int d = 0; d < Dim; ++d) {
-      const P x = make_pack<W>([&](int l) { return from.x[p + l][d]; });
+      const P x = x_now[d];
       xi[d] = (x - stencil_grid.origin[d]) * stencil_grid.inverse_cell_size[d];
       valid &=
           all_lanes<W>((xi[d] >= 0.0) & (xi[d] <= stencil_grid.upper_for_support[K::support][d]));
     }
     if (valid) [[likely]] {
+      std::array<P, Dim> in_cells;
       for (int d = 0; d < Dim; ++d) {
         const P last = P{} + stencil_grid.last[d];
-        const P in_cells = xi[d] < last ? xi[d] : last;
-        for (int l = 0; l < W; ++l) s.stencil_cells[p + l][d] = lane<W>(in_cells, l);
+        in_cells[d] = xi[d] < last ? xi[d] : last;
       }
+      store_by_component<W, Dim>([&](int l) { return s.stencil_cells[p + l].data(); }, in_cells);
       PackedStencilOf<State, W> st;
       st.compute_from_cell_units(
           stencil_grid, [&](int l) -> const Vec<Dim>& { return s.stencil_cells[p + l]; },

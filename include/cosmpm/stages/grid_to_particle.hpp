@@ -14,6 +14,7 @@
 
 #include "cosmpm/core/compiler.hpp"
 #include "cosmpm/core/pack.hpp"
+#include "cosmpm/core/pack_records.hpp"
 #include "cosmpm/core/parallel.hpp"
 #include "cosmpm/core/types.hpp"
 #include "cosmpm/material/concept.hpp"
@@ -92,11 +93,16 @@ COSMPM_ALWAYS_INLINE void map_from_grid(State& s, Index p, const auto& pass,
   }
   // New positions in cell units, for the box test and the particles' blocks.
   std::array<P, Dim> xi;
+  const auto v_record = [&](int l) { return v[p + l].data(); };
+  const auto x_record = [&](int l) { return x[p + l].data(); };
+  const std::array<P, Dim> v_before = load_by_component<W, Dim>(v_record);
+  const std::array<P, Dim> x_before = load_by_component<W, Dim>(x_record);
+  std::array<P, Dim> v_after, x_after;
   for (int d = 0; d < Dim; ++d) {
     const P v_grid = grid_values.value[Record::velocity + d];
     const P a_grid = grid_values.value[Record::acceleration + d];
-    const P v_old = make_pack<W>([&](int l) { return v[p + l][d]; });
-    const P x_old = make_pack<W>([&](int l) { return x[p + l][d]; });
+    const P v_old = v_before[d];
+    const P x_old = x_before[d];
     P v_new;
     if constexpr (affine) {
       v_new = v_grid;
@@ -114,11 +120,11 @@ COSMPM_ALWAYS_INLINE void map_from_grid(State& s, Index p, const auto& pass,
     }
     const P x_new = x_old + dt * v_grid;
     xi[d] = (x_new - pass.stencil_grid.origin[d]) * pass.stencil_grid.inverse_cell_size[d];
-    for (int l = 0; l < W; ++l) {
-      v[p + l][d] = lane<W>(v_new, l);
-      x[p + l][d] = lane<W>(x_new, l);
-    }
+    v_after[d] = v_new;
+    x_after[d] = x_new;
   }
+  store_by_component<W, Dim>(v_record, v_after);
+  store_by_component<W, Dim>(x_record, x_after);
   if constexpr (affine) {
     const auto b = transfer::detail::affine_moment<Record::all>(
         st, pass.stencil_grid, [&](int l) -> const Vec<Dim>& { return start[p + l]; },
@@ -138,6 +144,15 @@ COSMPM_ALWAYS_INLINE void map_from_grid(State& s, Index p, const auto& pass,
     for (int i = 0; i < Dim; ++i) L[i] = grid_values.gradient[Record::velocity + i];
     volume_ratio = update_deformation<W, Dim>(particles, p, L, dt);
     if constexpr (packed) stress_sum = update_stress_packed<W>(s, p, L, dt);
+  }
+  if constexpr (packed) {
+    auto& velocity_gradient = particles.template get<particles::field::VelocityGradient<Dim>>();
+    std::array<P, Dim * Dim> by_component;  // column-major records: L(i, j) at i + Dim j
+    for (int i = 0; i < Dim; ++i) {
+      for (int j = 0; j < Dim; ++j) by_component[i + Dim * j] = L[i][j];
+    }
+    store_by_component<W, Dim * Dim>([&](int l) { return velocity_gradient[p + l].data(); },
+                                     by_component);
   }
   // The packed update checks all lanes with one comparison: s * 0 is 0 for a finite s and
   // NaN otherwise, so s * 0 + J > 0 holds exactly when s is finite and J > 0.
@@ -162,18 +177,14 @@ COSMPM_ALWAYS_INLINE void map_from_grid(State& s, Index p, const auto& pass,
                                               spin_acceleration);
     }
     if constexpr (with_stress_update) {
-      auto& velocity_gradient =
-          particles.template get<particles::field::VelocityGradient<Dim>>()[q];
       if constexpr (packed) {
-        for (int i = 0; i < Dim; ++i) {
-          for (int j = 0; j < Dim; ++j) velocity_gradient(i, j) = lane<W>(L[i][j], l);
-        }
         if (!pack_sound &&
             !(std::isfinite(lane<W>(stress_sum, l)) && lane<W>(volume_ratio, l) > 0.0)) [[unlikely]]
           record_first(first_bad, q);
       } else {
         const auto rates = rates_from<State, W>(grid_values, l);
-        store_components(velocity_gradient, rates.velocity_gradient);
+        store_components(particles.template get<particles::field::VelocityGradient<Dim>>()[q],
+                         rates.velocity_gradient);
         const bool finite = update_constitutive(s, q, rates, dt);
         if (!(finite && lane<W>(volume_ratio, l) > 0.0)) [[unlikely]]
           record_first(first_bad, q);

@@ -6,6 +6,7 @@
 #include <algorithm>
 #include <array>
 #include <cmath>
+#include <cstring>
 #include <span>
 #include <string>
 #include <vector>
@@ -13,6 +14,7 @@
 #include "cosmpm/core/compiler.hpp"
 #include "cosmpm/core/error.hpp"
 #include "cosmpm/core/pack.hpp"
+#include "cosmpm/core/pack_records.hpp"
 #include "cosmpm/core/parallel.hpp"
 #include "cosmpm/core/types.hpp"
 #include "cosmpm/material/concept.hpp"
@@ -86,25 +88,15 @@ COSMPM_ALWAYS_INLINE Pack<W> update_stress_packed(
   constexpr int n = material::symmetric_components<State::dim>;
   auto& stress = s.particles.template get<particles::field::Stress<Model>>();
   auto& strain = s.particles.template get<particles::field::Strain<Model>>();
-  // Plane strain: zz is not accumulated, not stored; in 3D every component is.
-  static constexpr auto strain_components = [] {
-    if constexpr (State::dim == 2) {
-      return std::array<int, 3>{0, 1, 3};
-    } else {
-      return std::array<int, 6>{0, 1, 2, 3, 4, 5};
-    }
-  }();
-  std::array<P, n> sigma;
-  std::array<P, n> e;
-  e[2] = P{};
-  for (int c = 0; c < n; ++c) sigma[c] = make_pack<W>([&](int l) { return stress[p + l][c]; });
-  for (const int c : strain_components)
-    e[c] = make_pack<W>([&](int l) { return strain[p + l][c]; });
+  const auto stress_record = [&](int l) { return stress[p + l].data(); };
+  const auto strain_record = [&](int l) { return strain[p + l].data(); };
+  // Whole records: in plane strain the zz strain, which the update does not touch, is written
+  // back as it was read.
+  std::array<P, n> sigma = load_by_component<W, n>(stress_record);
+  std::array<P, n> e = load_by_component<W, n>(strain_record);
   State::continuum_type::update_stress_values(s.model(), L, dt, sigma, e);
-  for (int l = 0; l < W; ++l) {
-    for (int c = 0; c < n; ++c) stress[p + l][c] = lane<W>(sigma[c], l);
-    for (const int c : strain_components) strain[p + l][c] = lane<W>(e[c], l);
-  }
+  store_by_component<W, n>(strain_record, e);
+  store_by_component<W, n>(stress_record, sigma);
   if constexpr (n == 4) {
     return (sigma[0] + sigma[1]) + (sigma[2] + sigma[3]);
   } else {
@@ -128,10 +120,23 @@ COSMPM_ALWAYS_INLINE void rates_from_grid(State& s, Index p,
       stencil_grid, [&](int l) -> const Vec<Dim>& { return s.stencil_cells[p + l]; },
       [&](int l) -> const Vec<Dim>& { return half[p + l]; });
   const auto values = shape::gather<size, size>(st, records);
+  using Record = typename State::gather_record;
+  // The velocity gradients to both arrays, as records (column-major: L(i, j) at i + Dim j).
+  std::array<Pack<W>, Dim * Dim> gradient;
+  for (int i = 0; i < Dim; ++i) {
+    for (int j = 0; j < Dim; ++j) gradient[i + Dim * j] = values.gradient[Record::velocity + i][j];
+  }
+  store_by_component<W, Dim * Dim>([&](int l) { return L[p + l].data(); }, gradient);
+  store_by_component<W, Dim * Dim>(
+      [&](int l) { return s.particle_rates[p + l].velocity_gradient.data(); }, gradient);
   for (int l = 0; l < W; ++l) {
-    const auto rates = rates_from<State, W>(values, l);
-    store_components(L[p + l], rates.velocity_gradient);
-    s.particle_rates[p + l] = rates;
+    auto& rates = s.particle_rates[p + l];
+    for (int k = 0; k < State::rotational_dofs; ++k) {
+      rates.spin[k] = lane<W>(values.value[Record::spin + k], l);
+      for (int d = 0; d < Dim; ++d) {
+        rates.spin_gradient[k][d] = lane<W>(values.gradient[Record::spin + k][d], l);
+      }
+    }
   }
 }
 }  // namespace detail
@@ -272,7 +277,56 @@ COSMPM_ALWAYS_INLINE void update_stress_run(State& s, Index begin, Index size, d
   std::array<double, update_run> volume_ratio;
   // The deformation before the model's call, which reads neither F nor the volume: MUSL's
   // Cosserat step runs 8-9 % faster than with it after the call (docs/performance.md).
-  for (Index k = 0; k < size; ++k) {
+  constexpr int W = pack_width;
+  constexpr int n = strain_type::SizeAtCompileTime;
+  // The rotation on packs (the continuum's rotate_and_increment_values), with the records
+  // transposed in registers (core/pack_records.hpp); each lane's arithmetic is the
+  // one-particle path's.
+  constexpr int R = State::rotational_dofs;
+  using P = Pack<W>;
+  constexpr bool packed = [] {
+    if constexpr (W == 1 || R > 1 || (R > 0 && Dim != 2)) {
+      return false;
+    } else if constexpr (R == 0) {
+      return requires(std::array<std::array<P, Dim>, Dim> g, std::array<P, n> sigma) {
+        Continuum::rotate_and_increment_values(g, 0.0, sigma);
+      };
+    } else {
+      return requires(std::array<std::array<P, Dim>, Dim> g, P spin, std::array<P, Dim> grad,
+                      std::array<P, n> sigma) {
+        Continuum::rotate_and_increment_values(g, spin, grad, 0.0, sigma);
+      };
+    }
+  }();
+  Index packed_end = 0;  // the particles done in packs
+  if constexpr (packed) {
+    for (; packed_end + W <= size; packed_end += W) {
+      const Index p = begin + packed_end;
+      const auto* const rates = s.particle_rates.data() + p;
+      const auto gradient =
+          load_by_component<W, Dim * Dim>([&](int l) { return rates[l].velocity_gradient.data(); });
+      std::array<std::array<P, Dim>, Dim> L;
+      for (int i = 0; i < Dim; ++i) {
+        for (int j = 0; j < Dim; ++j) L[i][j] = gradient[i + Dim * j];
+      }
+      const auto stress_record = [&](int l) { return stress[p + l].data(); };
+      std::array<P, n> sigma = load_by_component<W, n>(stress_record);
+      std::array<P, n> step;
+      if constexpr (R == 0) {
+        step = Continuum::rotate_and_increment_values(L, dt, sigma);
+      } else {
+        const P spin = make_pack<W>([&](int l) { return rates[l].spin[0]; });
+        const auto spin_gradient =
+            load_by_component<W, Dim>([&](int l) { return rates[l].spin_gradient[0].data(); });
+        step = Continuum::rotate_and_increment_values(L, spin, spin_gradient, dt, sigma);
+      }
+      store_by_component<W, n>(stress_record, sigma);
+      store_by_component<W, n>([&](int l) { return increment[packed_end + l].data(); }, step);
+      const P J = update_deformation<W, Dim>(s.particles, p, L, dt);
+      std::memcpy(volume_ratio.data() + packed_end, &J, sizeof(J));
+    }
+  }
+  for (Index k = packed_end; k < size; ++k) {
     const Index p = begin + k;
     increment[k] = Continuum::rotate_and_increment(s.particle_rates[p], dt, stress[p]);
     std::array<std::array<double, Dim>, Dim> L;
