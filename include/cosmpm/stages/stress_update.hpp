@@ -6,7 +6,6 @@
 #include <algorithm>
 #include <array>
 #include <cmath>
-#include <cstring>
 #include <span>
 #include <string>
 #include <vector>
@@ -35,6 +34,19 @@ COSMPM_ALWAYS_INLINE void store_components(Matrix& to, const Matrix& from) {
   for (Index i = 0; i < Matrix::SizeAtCompileTime; ++i) to.data()[i] = from.data()[i];
 }
 
+// Lane l's rotational rates (spin and its gradient) from such a gather, into `rates`.
+template <class State, int W, class GridValues>
+COSMPM_ALWAYS_INLINE void spin_rates_from(const GridValues& grid_values, int l,
+                                          typename State::rates_type& rates) {
+  using Record = typename State::gather_record;
+  for (int k = 0; k < State::rotational_dofs; ++k) {
+    rates.spin[k] = lane<W>(grid_values.value[Record::spin + k], l);
+    for (int d = 0; d < State::dim; ++d) {
+      rates.spin_gradient[k][d] = lane<W>(grid_values.gradient[Record::spin + k][d], l);
+    }
+  }
+}
+
 // Lane l's rates from a gather whose first fields (velocity, then the rotational rates) carry
 // gradients.
 template <class State, int W, class GridValues>
@@ -47,12 +59,7 @@ COSMPM_ALWAYS_INLINE typename State::rates_type rates_from(const GridValues& gri
       rates.velocity_gradient(i, j) = lane<W>(grid_values.gradient[Record::velocity + i][j], l);
     }
   }
-  for (int k = 0; k < State::rotational_dofs; ++k) {
-    rates.spin[k] = lane<W>(grid_values.value[Record::spin + k], l);
-    for (int d = 0; d < Dim; ++d) {
-      rates.spin_gradient[k][d] = lane<W>(grid_values.gradient[Record::spin + k][d], l);
-    }
-  }
+  spin_rates_from<State, W>(grid_values, l, rates);
   return rates;
 }
 
@@ -129,15 +136,7 @@ COSMPM_ALWAYS_INLINE void rates_from_grid(State& s, Index p,
   store_by_component<W, Dim * Dim>([&](int l) { return L[p + l].data(); }, gradient);
   store_by_component<W, Dim * Dim>(
       [&](int l) { return s.particle_rates[p + l].velocity_gradient.data(); }, gradient);
-  for (int l = 0; l < W; ++l) {
-    auto& rates = s.particle_rates[p + l];
-    for (int k = 0; k < State::rotational_dofs; ++k) {
-      rates.spin[k] = lane<W>(values.value[Record::spin + k], l);
-      for (int d = 0; d < Dim; ++d) {
-        rates.spin_gradient[k][d] = lane<W>(values.gradient[Record::spin + k][d], l);
-      }
-    }
-  }
+  for (int l = 0; l < W; ++l) spin_rates_from<State, W>(values, l, s.particle_rates[p + l]);
 }
 }  // namespace detail
 
@@ -323,7 +322,7 @@ COSMPM_ALWAYS_INLINE void update_stress_run(State& s, Index begin, Index size, d
       store_by_component<W, n>(stress_record, sigma);
       store_by_component<W, n>([&](int l) { return increment[packed_end + l].data(); }, step);
       const P J = update_deformation<W, Dim>(s.particles, p, L, dt);
-      std::memcpy(volume_ratio.data() + packed_end, &J, sizeof(J));
+      cosmpm::detail::store_pack<W>(volume_ratio.data() + packed_end, J);
     }
   }
   for (Index k = packed_end; k < size; ++k) {
