@@ -21,6 +21,8 @@
 //   batched      material::update_batch over all steps and over runs of many sizes, and the
 //                model's own update_batch (HasBatchUpdate), equal update() bit for bit, or within
 //                the model's declared batch_rounding; spans of different sizes throw;
+//   packs        update_packs at width 2 and the engine's (HasPacksUpdate), the rest of the
+//                steps through update_batch, likewise;
 // and on the tangent steps (one per return region, chosen by the caller away from region
 // boundaries): the consistent tangent against central differences of update().
 //
@@ -189,6 +191,37 @@ void check_batch(const M& model, std::span<const Step<M>> steps, std::size_t fir
   }
 }
 
+// update_packs (HasPacksUpdate) at width W as a batch update: the whole packs through it, the
+// rest through update_batch.
+template <int W, class M>
+void check_packs(const M& model, std::span<const Step<M>> steps, std::size_t first,
+                 std::size_t count, Report& report) {
+  if constexpr (HasPacksUpdate<M, W>) {
+    using Packs = std::array<Pack<W>, static_cast<std::size_t>(M::stress_type::SizeAtCompileTime)>;
+    const auto through_packs = [&](auto stress, auto state, auto increment) {
+      const std::size_t packs = stress.size() / W;
+      std::vector<Packs> s(packs), d(packs);
+      for (std::size_t k = 0; k < packs; ++k) {
+        for (std::size_t c = 0; c < s[k].size(); ++c) {
+          for (int l = 0; l < W; ++l) {
+            s[k][c][l] = stress[k * W + l][c];
+            d[k][c][l] = increment[k * W + l][c];
+          }
+        }
+      }
+      model.template update_packs<W>(std::span(s), std::span<const Packs>(d), state.data());
+      for (std::size_t k = 0; k < packs; ++k) {
+        for (std::size_t c = 0; c < s[k].size(); ++c) {
+          for (int l = 0; l < W; ++l) stress[k * W + l][c] = s[k][c][l];
+        }
+      }
+      const std::size_t done = packs * W;
+      model.update_batch(stress.subspan(done), state.subspan(done), increment.subspan(done));
+    };
+    check_batch(model, steps, first, count, through_packs, "update_packs", report);
+  }
+}
+
 }  // namespace detail
 
 template <class M, class Elastic>
@@ -315,6 +348,9 @@ Report check_constitutive_model(const M& model, const Elastic& elastic,
     const auto member = [&](auto s, auto st, auto d) { model.update_batch(s, st, d); };
     detail::check_batch(model, steps, 0, steps.size(), member, "update_batch", report);
   }
+  detail::check_packs<2>(model, steps, 0, steps.size(), report);
+  if constexpr (pack_width > 2)
+    detail::check_packs<pack_width>(model, steps, 0, steps.size(), report);
   // Spans of different sizes throw before anything is written.
   if (steps.size() >= 2) {
     std::vector<Stress> stress{steps[0].old, steps[1].old};

@@ -9,6 +9,7 @@
 #include <doctest/doctest.h>
 
 #include <algorithm>
+#include <array>
 #include <cmath>
 #include <random>
 #include <span>
@@ -20,6 +21,8 @@
 #include "cosmpm/material/cosserat_drucker_prager.hpp"
 #include "cosmpm/material/drucker_prager.hpp"
 #include "cosmpm/material/linear_elastic.hpp"
+#include "material/cosserat_points.hpp"
+#include "material/packs_check.hpp"
 
 using cosmpm::CosseratTensor2D;
 using cosmpm::SymTensor2D;
@@ -29,61 +32,7 @@ using cosmpm::material::PlasticState;
 
 namespace {
 
-// The paper's Cosserat corn (Table 1), as in the benchmark.
-constexpr double kE = 2.76e6;
-constexpr double kNu = 0.2;
-constexpr double kG = kE / (2 * (1 + kNu));
-constexpr double kL = 0.01;
-constexpr double kPhi = 26.0;
-constexpr double kPsi = 2.0;
-constexpr double kBulk = kE / (3 * (1 - 2 * kNu));
-
-struct Points {
-  std::vector<CosseratTensor2D<double>> stress, increment;
-  std::vector<PlasticState> state;
-};
-
-// States like the benchmark's (benchmarks/material/material.bench.cpp): old stresses of a few kPa
-// compression, K0 in [0.3, 1], shear and couple stresses, increments up to 4e-4 and curvatures
-// up to 1e-4 / l; about half of them plastic. A fraction `tension` goes beyond the apex pressure
-// `model_apex`: half pulled apart by 3e-3 volumetric strain (to the apex), half just beyond it
-// with a large shear (to the cone).
-// The states start with some plastic strain and a stale plastic flag, which update must add to
-// and overwrite.
-Points benchmark_like(std::size_t count, unsigned seed, double tension = 0.0,
-                      double model_apex = 0.0) {
-  std::mt19937_64 rng(seed);
-  std::uniform_real_distribution<double> depth_stress(-6e3, -0.5e3), k0(0.3, 1.0), unit(-1, 1),
-      uniform(0, 1);
-  Points p;
-  for (std::size_t i = 0; i < count; ++i) {
-    const double vertical = depth_stress(rng), k = k0(rng), shear = 0.1 * vertical * unit(rng);
-    CosseratTensor2D<double> s, de;
-    s << k * vertical, vertical, k * vertical, shear * (1 + 0.1 * unit(rng)),
-        shear * (1 + 0.1 * unit(rng)), 0.1 * kL * vertical * unit(rng),
-        0.1 * kL * vertical * unit(rng);
-    const double exy = 4e-4 * unit(rng);
-    de << 4e-4 * unit(rng), 4e-4 * unit(rng), 0.0, exy + 2e-5 * unit(rng), exy + 2e-5 * unit(rng),
-        1e-4 / kL * unit(rng), 1e-4 / kL * unit(rng);
-    if (uniform(rng) < tension) {
-      if (uniform(rng) < 0.5) {
-        de.head<3>().array() += 3e-3;  // pulled apart: at the apex
-      } else {
-        // A trial p just above the apex pressure (up to 200 Pa) and a large shear: the
-        // return stays on the cone beyond the apex pressure.
-        const double p_old = (s[0] + s[1] + s[2]) / 3;
-        const double p_trial = model_apex + 200 * uniform(rng);
-        de.head<3>().array() += (p_trial - p_old) / (3 * kBulk) - (de[0] + de[1] + de[2]) / 3;
-        de[3] += 6e-3 * unit(rng);
-        de[4] = de[3];
-      }
-    }
-    p.stress.push_back(s);
-    p.increment.push_back(de);
-    p.state.push_back({1e-3 * uniform(rng), uniform(rng) < 0.5 ? 1.0 : 0.0});
-  }
-  return p;
-}
+using namespace cosserat_points;
 
 struct Counts {
   int plastic = 0, apex = 0, beyond = 0;
@@ -190,6 +139,40 @@ TEST_CASE("CosseratDruckerPrager: update_batch with other coefficients, Gc = 0, 
     CHECK(c.apex > 40);
     CHECK(c.beyond > 40);
   }
+}
+
+TEST_CASE("CosseratDruckerPrager: update_packs equals update_batch bit for bit") {
+  // Packs of the target's width (2 with SSE2; tests/native checks 4), with mixed packs and runs
+  // of all-elastic and all-plastic ones, points at the apex and beyond the apex pressure, for
+  // models with two, three (a slow series start: some lanes not stopped after the lanes' two
+  // steps) and one distinct mode rate.
+  constexpr int W = cosmpm::material::detail::CosseratBatch<double>::batch_lanes;
+  for (const auto& model : models_by_rates()) {
+    CAPTURE(model.cosserat_shear_modulus());
+    Points p = benchmark_like(2400, 23, 0.2, model.apex_pressure());
+    const auto kinds = packs_check::sort_second_half<W>(model, p);
+    // Every kind is exercised: of the 1200 packs of 2, 269-303 all elastic, 423-628 all
+    // plastic and 301-476 mixed for the three models with this seed.
+    CHECK(kinds[0] > 100);
+    CHECK(kinds[1] > 100);
+    CHECK(kinds[2] > 100);
+    for (const std::size_t packs : {std::size_t{0}, std::size_t{1}, p.stress.size() / W}) {
+      CAPTURE(packs);
+      CHECK(packs_check::packs_differences<W>(model, p.stress, p.state, p.increment, packs) == 0);
+    }
+  }
+}
+
+TEST_CASE("CosseratDruckerPrager: update_packs with different counts throws cosmpm::Error") {
+  constexpr int W = cosmpm::material::detail::CosseratBatch<double>::batch_lanes;
+  using Packs = std::array<cosmpm::Pack<W>, 7>;
+  const CosseratDruckerPrager<double> model(kE, kNu, 2 * kG, kL, kPhi, kPsi);
+  std::vector<Packs> stress(3), increment(2);
+  std::vector<PlasticState> state(3 * W);
+  CHECK_THROWS_WITH_AS(
+      model.update_packs<W>(std::span(stress), std::span<const Packs>(increment), state.data()),
+      doctest::Contains("CosseratDruckerPrager::update_packs: stress has 3 packs and increment 2"),
+      cosmpm::Error);
 }
 
 TEST_CASE("material::update_batch: a model without update_batch gets the loop, bit for bit") {

@@ -12,6 +12,7 @@
 #include <type_traits>
 
 #include "cosmpm/core/error.hpp"
+#include "cosmpm/core/pack.hpp"
 
 namespace cosmpm::material {
 
@@ -131,6 +132,23 @@ concept HasBatchUpdate = ConstitutiveModel<M> &&
   { model.update_batch(stress, state, increment) } -> std::same_as<void>;
 };
 
+// HasPacksUpdate<M, W>: update_batch for points whose stresses and increments come by
+// component in packs of W (core/pack.hpp): model.update_packs<W>(stress, increment, state) gives
+// point l of pack k, with state state[k W + l], the values update_batch would. The engine's stage
+// 4b, which holds the rotated stresses and the increments so, calls it for its whole packs and
+// update_batch for the rest. A model declares it for the widths it runs in registers.
+template <class M, int W>
+concept HasPacksUpdate = HasBatchUpdate<M> && requires(
+    const M& model,
+    std::span<std::array<Pack<W>, static_cast<std::size_t>(M::stress_type::SizeAtCompileTime)>>
+        stress,
+    std::span<
+        const std::array<Pack<W>, static_cast<std::size_t>(M::stress_type::SizeAtCompileTime)>>
+        increment,
+    typename M::state_type* state) {
+  model.template update_packs<W>(stress, increment, state);
+};
+
 // The relative difference of a model's update_batch from update() (see HasBatchUpdate): 0 for
 // every model that does not declare one.
 template <class M>
@@ -160,6 +178,14 @@ inline void require_equal_batch_sizes(std::string_view where, std::size_t stress
     throw Error(std::string(where) + ": stress has " + std::to_string(stress) + " points, state " +
                 std::to_string(state) + " and increment " + std::to_string(increment) +
                 "; the three sizes must be equal");
+}
+
+// The check of update_packs' arguments: as many increment packs as stress packs.
+inline void require_equal_pack_counts(std::string_view where, std::size_t stress,
+                                      std::size_t increment) {
+  if (stress != increment)
+    throw Error(std::string(where) + ": stress has " + std::to_string(stress) +
+                " packs and increment " + std::to_string(increment) + "; the two must be equal");
 }
 
 // update(stress[i], state[i], increment[i]) for every i, by the model's update_batch when it

@@ -164,6 +164,22 @@ class CosseratDruckerPrager {
     }
   }
 
+  // The hook on packs (HasPacksUpdate): update_batch for points whose stresses and increments
+  // come by component in packs of the register width, point l of pack k with state[k W + l];
+  // the same values (detail::CosseratBatch::run_packs). The engine's stage 4b calls it with the
+  // packs of its rotation, which saves update_batch's loads and stores lane by lane.
+  template <int W>
+  void update_packs(std::span<std::array<detail::Lanes<T, W>, 7>> stress,
+                    std::span<const std::array<detail::Lanes<T, W>, 7>> increment,
+                    state_type* state) const
+      requires(W == detail::CosseratBatch<T>::batch_lanes && detail::has_lanes) {
+    require_equal_pack_counts("CosseratDruckerPrager::update_packs", stress.size(),
+                              increment.size());
+    detail::CosseratBatch<T>::run_packs(
+        cone_, moduli_, stress.data(), increment.data(), stress.size(), state,
+        [this](stress_type& s, state_type& st) { plastic_return_of_trial(s, st); });
+  }
+
  private:
   using Cone = detail::CosseratCone<T>;
 
@@ -272,5 +288,8 @@ class CosseratDruckerPrager {
 static_assert(ConstitutiveModel<CosseratDruckerPrager<double>>);
 static_assert(HasConsistentTangent<CosseratDruckerPrager<double>>);
 static_assert(HasBatchUpdate<CosseratDruckerPrager<double>>);
+static_assert(
+    !detail::has_lanes ||
+    HasPacksUpdate<CosseratDruckerPrager<double>, detail::CosseratBatch<double>::batch_lanes>);
 
 }  // namespace cosmpm::material

@@ -218,6 +218,25 @@ class MohrCoulomb {
     }
   }
 
+  // The hook on packs (HasPacksUpdate): update_batch for points whose stresses and increments
+  // come by component in packs of the register width (4 or more doubles, as update_batch's
+  // lanes), point l of pack k with state[k W + l]; bit for bit update(). The engine's stage 4b
+  // calls it with the packs of its rotation, which saves update_batch's loads and stores lane by
+  // lane.
+  template <int W>
+  void update_packs(std::span<std::array<detail::Lanes<T, W>, n>> stress,
+                    std::span<const std::array<detail::Lanes<T, W>, n>> increment,
+                    state_type* state) const
+      requires(Dim == 2 && detail::has_lanes && std::is_same_v<T, double> && W >= 4 &&
+               W * sizeof(double) == detail::register_bytes) {
+    require_equal_pack_counts("MohrCoulomb::update_packs", stress.size(), increment.size());
+    const detail::MohrCoulombBatch2D<T> batch{elastic_, return_, isochoric_return_,
+                                              dilatancy_cutoff_strain_, separation_};
+    batch.template run_packs<W>(
+        stress.data(), increment.data(), stress.size(), state, return_.has_cutoff(),
+        [this](stress_type& s, state_type& st, const strain_type& de) { update(s, st, de); });
+  }
+
   tangent_type elastic_tangent() const { return elastic_.template tangent<n>(); }
 
   // The principal-space return on its own: `trial` sorted descending, result sorted likewise.

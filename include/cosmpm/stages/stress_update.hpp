@@ -297,6 +297,13 @@ COSMPM_ALWAYS_INLINE void update_stress_run(State& s, Index begin, Index size, d
       };
     }
   }();
+  // The model's update on the same packs where it has one (material::HasPacksUpdate), for
+  // the whole packs; update_batch for the rest.
+  constexpr bool packed_model = packed && material::HasPacksUpdate<Model, W>;
+  using StressPacks = std::array<P, n>;
+  constexpr std::size_t packs_held = packed_model ? update_run / W : 0;
+  std::array<StressPacks, packs_held> sigma_packs;
+  std::array<StressPacks, packs_held> increment_packs;
   Index packed_end = 0;  // the particles done in packs
   if constexpr (packed) {
     for (; packed_end + W <= size; packed_end += W) {
@@ -319,7 +326,12 @@ COSMPM_ALWAYS_INLINE void update_stress_run(State& s, Index begin, Index size, d
             load_by_component<W, Dim>([&](int l) { return rates[l].spin_gradient[0].data(); });
         step = Continuum::rotate_and_increment_values(L, spin, spin_gradient, dt, sigma);
       }
-      store_by_component<W, n>(stress_record, sigma);
+      if constexpr (packed_model) {
+        sigma_packs[static_cast<std::size_t>(packed_end / W)] = sigma;
+        increment_packs[static_cast<std::size_t>(packed_end / W)] = step;
+      } else {
+        store_by_component<W, n>(stress_record, sigma);
+      }
       store_by_component<W, n>([&](int l) { return increment[packed_end + l].data(); }, step);
       const P J = update_deformation<W, Dim>(s.particles, p, L, dt);
       cosmpm::detail::store_pack<W>(volume_ratio.data() + packed_end, J);
@@ -334,9 +346,21 @@ COSMPM_ALWAYS_INLINE void update_stress_run(State& s, Index begin, Index size, d
     }
     volume_ratio[k] = update_deformation<1, Dim>(s.particles, p, L, dt);
   }
-  material::update_batch(s.model(), std::span(stress.data() + begin, points),
-                         std::span(state.data() + begin, points),
-                         std::span<const strain_type>(increment.data(), points));
+  if constexpr (packed_model) {
+    const auto packs = static_cast<std::size_t>(packed_end / W);
+    s.model().template update_packs<W>(std::span(sigma_packs.data(), packs),
+                                       std::span<const StressPacks>(increment_packs.data(), packs),
+                                       &state[begin]);
+    for (std::size_t k = 0; k < packs; ++k) {
+      const Index p = begin + static_cast<Index>(k) * W;
+      store_by_component<W, n>([&](int l) { return stress[p + l].data(); }, sigma_packs[k]);
+    }
+  }
+  const auto batch_begin = static_cast<std::size_t>(packed_model ? packed_end : 0);
+  material::update_batch(
+      s.model(), std::span(stress.data() + begin + batch_begin, points - batch_begin),
+      std::span(state.data() + begin + batch_begin, points - batch_begin),
+      std::span<const strain_type>(increment.data() + batch_begin, points - batch_begin));
   for (Index k = 0; k < size; ++k) {
     const Index p = begin + k;
     Continuum::accumulate_strain(strain[p], increment[k]);

@@ -35,6 +35,8 @@ template <class T>
 class CosseratBatch {
  public:
   using Stress = Eigen::Matrix<T, 7, 1>;
+  static constexpr int batch_lanes = static_cast<int>(register_bytes / sizeof(T));
+  using V = Lanes<T, batch_lanes>;
 
   // update(stress[i], state[i], increment[i]) for i < count; `per_point(stress, state)` is the
   // per-point return of a plastic point whose stress holds its trial.
@@ -54,12 +56,32 @@ class CosseratBatch {
     }
   }
 
+  // run() for points whose stresses and increments come in packs by component (the engine's
+  // stage 4b holds them so): pack k holds points k L .. k L + L - 1 (L = batch_lanes), whose
+  // states are state[k L ..]. The same passes and lane values as run(), with pass 1 on the
+  // packs and the packs with a plastic lane queued whole: the engine's points come in space
+  // order, so a pack is mostly all elastic or all plastic (a mixed pack's other lanes ride
+  // along, counted as stopped, and keep their values).
+  template <class PerPoint>
+  static void run_packs(const CosseratCone<T>& cone, const CosseratModuli<T>& moduli,
+                        std::array<V, 7>* stress, const std::array<V, 7>* increment,
+                        std::size_t packs, PlasticState* state, const PerPoint& per_point) {
+    switch (cone.groups()) {
+      case 1:
+        Pass<1, PerPoint>{cone, per_point}.run_packs(moduli, stress, increment, packs, state);
+        break;
+      case 2:
+        Pass<2, PerPoint>{cone, per_point}.run_packs(moduli, stress, increment, packs, state);
+        break;
+      default:
+        Pass<3, PerPoint>{cone, per_point}.run_packs(moduli, stress, increment, packs, state);
+    }
+  }
+
  private:
   using Cone = CosseratCone<T>;
   static constexpr std::size_t batch_chunk = 128;  // the scratch (21 KB) stays in L1
   static constexpr int batch_steps = 2;  // about 90 % of the plastic points stop after one
-  static constexpr int batch_lanes = static_cast<int>(register_bytes / sizeof(T));
-  using V = Lanes<T, batch_lanes>;
 
   // A chunk's queues and, by cone-queue entry, the solve's state (so L entries load as lanes).
   // The stresses of the queued points hold their trials.
@@ -112,6 +134,40 @@ class CosseratBatch {
       }
     }
 
+    void run_packs(const CosseratModuli<T>& model_moduli, std::array<V, 7>* stress,
+                   const std::array<V, 7>* increment, std::size_t packs,
+                   PlasticState* state) const {
+      constexpr std::size_t L = batch_lanes;
+      Scratch scratch;
+      const CosseratModuli<T> moduli = model_moduli;
+      const typename Cone::TrialWeights weights = cone.weights();
+      for (std::size_t begin = 0; begin < packs; begin += batch_chunk / L) {
+        const std::size_t end = std::min(packs, begin + batch_chunk / L);
+        std::size_t queued = 0;  // packs, in scratch.index
+        for (std::size_t k = begin; k < end; ++k) {
+          stress[k] = cosserat_trial(stress[k], increment[k], moduli);
+          const auto elastic = Cone::is_elastic(Cone::split_trial(stress[k], weights));
+          for (std::size_t l = 0; l < L; ++l)
+            state[k * L + l].plastic = static_cast<double>(lane_of(elastic, int(l)) == 0);
+          scratch.index[queued] = k;
+          queued += static_cast<std::size_t>(!cosmpm::all_lanes<L>(elastic));
+        }
+        if (queued == 0) continue;
+        const std::size_t lanes = queued * L;
+        for (std::size_t k = 0; k < lanes; k += L)
+          scaling_lanes(scratch, k, stress[scratch.index[k / L]]);
+        for (std::size_t k = 0; k < lanes; k += L) series_lanes(scratch, k);
+        for (int iteration = 0; iteration < batch_steps; ++iteration) {
+          for (std::size_t k = 0; k < lanes; k += L) sums_lanes(scratch, k);
+          for (std::size_t k = 0; k < lanes; k += L) step_lanes(scratch, k);
+        }
+        for (std::size_t k = 0; k < lanes; k += L) {
+          const std::size_t pack = scratch.index[k / L];
+          finish_pack(scratch, k, stress[pack], state + pack * L);
+        }
+      }
+    }
+
     // Pass 1 for points i .. i + n - 1, n the lanes of W (1 for T).
     template <class W>
     static void classify(std::size_t i, Stress* stress, PlasticState* state,
@@ -150,7 +206,11 @@ class CosseratBatch {
 
     // The passes over the cone queue, each for entries k .. k + L - 1.
     void scaling_lanes(Scratch& b, std::size_t k, const Stress* stress) const {
-      const std::array<V, 7> t = gather_trials(b, k, stress);
+      scaling_lanes(b, k, gather_trials(b, k, stress));
+    }
+    // ... from the trials t. A lane that is not a cone point (elastic, or beyond the apex
+    // pressure: only in run_packs) starts as stopped.
+    void scaling_lanes(Scratch& b, std::size_t k, const std::array<V, 7>& t) const {
       const auto split = Cone::split_trial(t, cone.weights());
       V q_trial = split.w_sum;
       sqrt_in_place(q_trial);
@@ -166,6 +226,8 @@ class CosseratBatch {
       store_lanes(&b.q_trial[k], q_trial);
       store_lanes(&b.p_trial[k], split.p);
       store_lanes(&b.q0[k], split.q0);
+      const auto cone_point = mask_not(Cone::is_elastic(split)) & (split.q0 > T(0));
+      store_lanes(&b.stopped[k], cone_point ? V{} : V{} + T(1));
     }
 
     void series_lanes(Scratch& b, std::size_t k) const {
@@ -176,7 +238,6 @@ class CosseratBatch {
       store_lanes(&b.lo[k], s.lo);
       store_lanes(&b.scale[k], s.scale);
       store_lanes(&b.y[k], Cone::clamped_start(s));
-      store_lanes(&b.stopped[k], V{});
     }
 
     static typename Cone::template ConeStart<V, M> load_scaling(const Scratch& b, std::size_t k) {
@@ -226,19 +287,48 @@ class CosseratBatch {
       store_lanes(&b.stopped[k], (done | stop) ? V{} + T(1) : V{});
     }
 
-    // The returned stresses, stored for the first `count` lanes if they stopped; the others are
-    // redone by the per-point return.
-    void finish_lanes(const Scratch& b, std::size_t k, std::size_t count, Stress* stress,
-                      PlasticState* state) const {
-      const std::array<V, 7> t = gather_trials(b, k, stress);
+    // The returned stresses of entries k .. k + L - 1 from their trials t, and the multipliers.
+    std::array<V, 7> returned(const Scratch& b, std::size_t k, const std::array<V, 7>& t,
+                              V& multiplier) const {
       V y, q_trial, p_trial, q0;
       load_lanes(y, &b.y[k]);
       load_lanes(q_trial, &b.q_trial[k]);
       load_lanes(p_trial, &b.p_trial[k]);
       load_lanes(q0, &b.q0[k]);
-      const V multiplier = y * q_trial;
-      const std::array<V, 7> out =
-          Cone::scaled_stress(t, p_trial, cone.return_scales(p_trial, q0, multiplier));
+      multiplier = y * q_trial;
+      return Cone::scaled_stress(t, p_trial, cone.return_scales(p_trial, q0, multiplier));
+    }
+
+    // run_packs' last pass: the pack `t` of trials (entries k ..) gets its cone points' returned
+    // stresses where they stopped; its other plastic lanes take the per-point return.
+    void finish_pack(const Scratch& b, std::size_t k, std::array<V, 7>& t,
+                     PlasticState* state) const {
+      V multiplier;
+      const std::array<V, 7> out = returned(b, k, t, multiplier);
+      V q0;
+      load_lanes(q0, &b.q0[k]);
+      const auto cone_point = q0 > T(0);
+      for (int l = 0; l < batch_lanes; ++l) {
+        const std::size_t lane = static_cast<std::size_t>(l);
+        if (state[lane].plastic == 0.0) continue;
+        if ((lane_of(cone_point, l) != 0) & (b.stopped[k + lane] != T(0))) {
+          for (int c = 0; c < 7; ++c) t[c][l] = out[c][l];
+          state[lane].plastic_shear_strain += static_cast<double>(multiplier[l]);
+        } else {
+          Stress point;
+          for (int c = 0; c < 7; ++c) point[c] = t[c][l];
+          per_point(point, state[lane]);
+          for (int c = 0; c < 7; ++c) t[c][l] = point[c];
+        }
+      }
+    }
+
+    // The returned stresses, stored for the first `count` lanes if they stopped; the others are
+    // redone by the per-point return.
+    void finish_lanes(const Scratch& b, std::size_t k, std::size_t count, Stress* stress,
+                      PlasticState* state) const {
+      V multiplier;
+      const std::array<V, 7> out = returned(b, k, gather_trials(b, k, stress), multiplier);
       // A loop of constant length, so each lane is taken from the registers by a constant
       // index (with a variable one the lanes go through memory, and 16-byte loads across two
       // earlier stores stall).

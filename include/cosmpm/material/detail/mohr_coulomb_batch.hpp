@@ -11,6 +11,7 @@
 //
 // Lanes go to the per-point update instead when their grains are apart (separation > 0: the
 // gap's own path) or their trial is not finite (update() then decides what the engine reports).
+#include <Eigen/Core>
 #include <array>
 #include <cstddef>
 
@@ -41,16 +42,64 @@ struct MohrCoulombBatch2D {
     for (; i < count; ++i) per_point(stress[i], state[i], de[i]);
   }
 
+  // Packs stress[0 .. packs - 1] of L points by component, increments likewise, point l of
+  // pack k with state[k L + l]; every point per point with `per_point_only` (a cut-off below
+  // the apex, as run<1>).
+  template <int L, class State, class PerPoint>
+  void run_packs(std::array<Lanes<T, L>, 4>* stress, const std::array<Lanes<T, L>, 4>* de,
+                 std::size_t packs, State* state, bool per_point_only,
+                 const PerPoint& per_point) const {
+    using Packs = std::array<Lanes<T, L>, 4>;
+    for (std::size_t k = 0; k < packs; ++k) {
+      State* const pack_state = state + k * L;
+      const auto per_point_lane = [&](int l, const Packs& old, Packs& out) {
+        Eigen::Matrix<T, 4, 1> point, increment;
+        for (int c = 0; c < 4; ++c) {
+          point[c] = old[c][l];
+          increment[c] = de[k][c][l];
+        }
+        per_point(point, pack_state[l], increment);
+        for (int c = 0; c < 4; ++c) out[c][l] = point[c];
+      };
+      if (per_point_only) {
+        for (int l = 0; l < L; ++l) per_point_lane(l, stress[k], stress[k]);
+      } else {
+        lanes_by_component<L>(stress[k], de[k], pack_state, per_point_lane);
+      }
+    }
+  }
+
  private:
+  // lanes_by_component for points stress[0 .. L - 1] in memory.
   template <int L, class Stress, class State, class Strain, class PerPoint>
   void lanes(Stress* stress, State* state, const Strain* de, PerPoint& per_point) const {
-    using V = Lanes<T, L>;
-    using Mask = decltype(V{} < V{});
-    std::array<V, 4> old_stress, de_lanes;
+    std::array<Lanes<T, L>, 4> stress_lanes, de_lanes;
     for (int c = 0; c < 4; ++c) {
-      gather_lanes(old_stress[c], [&](int l) { return stress[l][c]; });
+      gather_lanes(stress_lanes[c], [&](int l) { return stress[l][c]; });
       gather_lanes(de_lanes[c], [&](int l) { return de[l][c]; });
     }
+    // stress[l] still holds the old stress when a lane goes per point.
+    const auto per_point_lane = [&](int l, const auto&, auto& out) {
+      per_point(stress[l], state[l], de[l]);
+      for (int c = 0; c < 4; ++c) out[c][l] = stress[l][c];
+    };
+    lanes_by_component<L>(stress_lanes, de_lanes, state, per_point_lane);
+    for (int l = 0; l < L; ++l) {
+      for (int c = 0; c < 4; ++c) stress[l][c] = stress_lanes[c][l];
+    }
+  }
+
+ public:
+  // The update of L points whose stresses and increments come by component: `stress` in, the
+  // new stresses out; per_point_lane(l, old_stress, stress) is the per-point update of lane l
+  // (a point apart, or a trial that is not finite), which leaves lane l of `stress` its result.
+  template <int L, class State, class PerPointLane>
+  void lanes_by_component(std::array<Lanes<T, L>, 4>& stress,
+                          const std::array<Lanes<T, L>, 4>& de_lanes, State* state,
+                          const PerPointLane& per_point_lane) const {
+    using V = Lanes<T, L>;
+    using Mask = decltype(V{} < V{});
+    const std::array<V, 4> old_stress = stress;
     V shear_strain, gap;
     gather_lanes(shear_strain, [&](int l) { return T(state[l].plastic_shear_strain); });
     gather_lanes(gap, [&](int l) { return T(state[l].separation); });
@@ -75,17 +124,12 @@ struct MohrCoulombBatch2D {
     const V f = flow.yield(s1, s3);
     const Mask elastic_lane = f <= zero;
     const V finite = (txx - txx) + (tyy - tyy) + (tzz - tzz) + (txy - txy);
-    Mask per_point_lane = !(finite == zero);
-    if (separation) per_point_lane = per_point_lane || gap > zero;
+    Mask per_point_lane_mask = !(finite == zero);
+    if (separation) per_point_lane_mask = per_point_lane_mask || gap > zero;
     // Runs of elastic points are common (the engine's points come in space order): one branch.
-    if (cosmpm::all_lanes<L>(elastic_lane && !per_point_lane)) {
-      for (int l = 0; l < L; ++l) {
-        stress[l][0] = txx[l];
-        stress[l][1] = tyy[l];
-        stress[l][2] = tzz[l];
-        stress[l][3] = txy[l];
-        state[l].plastic = 0.0;
-      }
+    if (cosmpm::all_lanes<L>(elastic_lane && !per_point_lane_mask)) {
+      stress = trial;
+      for (int l = 0; l < L; ++l) state[l].plastic = 0.0;
       return;
     }
 
@@ -115,16 +159,13 @@ struct MohrCoulombBatch2D {
     V new_gap = gap;
     if (separation) new_gap = opens ? gap + trial_mean / bulk : gap;
 
+    stress = {out_xx, out_yy, out_zz, out_xy};
     // The per-point update for lanes apart or with a trial that is not finite.
     for (int l = 0; l < L; ++l) {
-      if (per_point_lane[l]) [[unlikely]] {
-        per_point(stress[l], state[l], de[l]);
+      if (per_point_lane_mask[l]) [[unlikely]] {
+        per_point_lane(l, old_stress, stress);
         continue;
       }
-      stress[l][0] = out_xx[l];
-      stress[l][1] = out_yy[l];
-      stress[l][2] = out_zz[l];
-      stress[l][3] = out_xy[l];
       state[l].plastic_shear_strain = static_cast<double>(new_shear_strain[l]);
       state[l].plastic = static_cast<double>(plastic[l]);
       state[l].separation = static_cast<double>(new_gap[l]);
