@@ -131,8 +131,11 @@ requires(Model::is_cosserat&& material::dimension_of<Model> == 2) class Cosserat
     const Value curvature_x = spin_gradient[0] * dt, curvature_y = spin_gradient[1] * dt;
     return {L[0][0] * dt, L[1][1] * dt, Value{}, yx, xy, curvature_x, curvature_y};
   }
-  static void accumulate_strain(strain_type& strain, const strain_type& increment) {
-    strain += increment;
+  // Every component accumulates. Strain and increment are indexable by the components (an
+  // Eigen vector, or packs of them by component).
+  template <class Strain, class Increment>
+  COSMPM_ALWAYS_INLINE static void accumulate_strain(Strain& strain, const Increment& increment) {
+    for (int c = 0; c < 7; ++c) strain[c] += increment[c];
   }
 
   // No update on packs: the engine updates Cosserat stresses per particle or in batches.

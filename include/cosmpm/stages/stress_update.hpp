@@ -301,6 +301,11 @@ COSMPM_ALWAYS_INLINE void update_stress_run(State& s, Index begin, Index size, d
   // the whole packs; update_batch for the rest.
   constexpr bool packed_model = packed && material::HasPacksUpdate<Model, W>;
   using StressPacks = std::array<P, n>;
+  // ... and the strains accumulated on the same packs where the continuum can.
+  constexpr bool packed_strain =
+      packed_model && requires(StressPacks & strain_packs, const StressPacks& step) {
+    Continuum::accumulate_strain(strain_packs, step);
+  };
   constexpr std::size_t packs_held = packed_model ? update_run / W : 0;
   std::array<StressPacks, packs_held> sigma_packs;
   std::array<StressPacks, packs_held> increment_packs;
@@ -332,7 +337,9 @@ COSMPM_ALWAYS_INLINE void update_stress_run(State& s, Index begin, Index size, d
       } else {
         store_by_component<W, n>(stress_record, sigma);
       }
-      store_by_component<W, n>([&](int l) { return increment[packed_end + l].data(); }, step);
+      if constexpr (!packed_strain) {
+        store_by_component<W, n>([&](int l) { return increment[packed_end + l].data(); }, step);
+      }
       const P J = update_deformation<W, Dim>(s.particles, p, L, dt);
       cosmpm::detail::store_pack<W>(volume_ratio.data() + packed_end, J);
     }
@@ -354,6 +361,12 @@ COSMPM_ALWAYS_INLINE void update_stress_run(State& s, Index begin, Index size, d
     for (std::size_t k = 0; k < packs; ++k) {
       const Index p = begin + static_cast<Index>(k) * W;
       store_by_component<W, n>([&](int l) { return stress[p + l].data(); }, sigma_packs[k]);
+      if constexpr (packed_strain) {  // whole records: a component not accumulated goes back as is
+        const auto strain_record = [&](int l) { return strain[p + l].data(); };
+        StressPacks strain_packs = load_by_component<W, n>(strain_record);
+        Continuum::accumulate_strain(strain_packs, increment_packs[k]);
+        store_by_component<W, n>(strain_record, strain_packs);
+      }
     }
   }
   const auto batch_begin = static_cast<std::size_t>(packed_model ? packed_end : 0);
@@ -363,7 +376,7 @@ COSMPM_ALWAYS_INLINE void update_stress_run(State& s, Index begin, Index size, d
       std::span<const strain_type>(increment.data() + batch_begin, points - batch_begin));
   for (Index k = 0; k < size; ++k) {
     const Index p = begin + k;
-    Continuum::accumulate_strain(strain[p], increment[k]);
+    if (!packed_strain || k >= packed_end) Continuum::accumulate_strain(strain[p], increment[k]);
     if (!(std::isfinite(stress[p].sum()) && volume_ratio[k] > 0.0)) record_first(first_bad, p);
   }
 }
