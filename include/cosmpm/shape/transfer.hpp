@@ -95,11 +95,16 @@ COSMPM_ALWAYS_INLINE Gathered<Dim, C, G, Pack<W>> gather(const PackedStencil<Dim
   if constexpr (W == 4 && C >= 2 && cosmpm::detail::transposes_records) {
     // Each lane's whole node record at once, transposed in registers (core/pack_records.hpp).
     std::array<std::array<Pack<W>, C>, PackedStencil<Dim, K, W>::rows * K::support> by_node;
+    // Each lane's first record once; a node's records are then one offset from it for all
+    // lanes (from the node index, the multiplication by C was redone per lane and load).
+    std::array<const double*, W> first_record;
+    for (int l = 0; l < W; ++l) first_record[l] = records + s.first_node[l] * C;
     for (int r = 0; r < PackedStencil<Dim, K, W>::rows; ++r) {
       const Index offset = s.row_offset(r);
       for (int i = 0; i < K::support; ++i) {
-        by_node[r * K::support + i] = load_by_component<W, C>(
-            [&](int l) { return records + (s.first_node[l] + offset + i) * C; });
+        const Index node_offset = (offset + i) * C;
+        by_node[r * K::support + i] =
+            load_by_component<W, C>([&](int l) { return first_record[l] + node_offset; });
       }
     }
     return detail::gather_rows<C, G>(

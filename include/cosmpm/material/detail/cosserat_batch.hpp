@@ -248,9 +248,9 @@ class CosseratBatch {
     }
 
     static bool all_stopped(const Scratch& b, std::size_t k) {
-      bool all = true;
-      for (std::size_t j = k; j < k + batch_lanes; ++j) all &= b.stopped[j] != T(0);
-      return all;
+      V stopped;
+      load_lanes(stopped, &b.stopped[k]);
+      return cosmpm::all_lanes<batch_lanes>(stopped != T(0));
     }
 
     void sums_lanes(Scratch& b, std::size_t k) const {
@@ -305,15 +305,19 @@ class CosseratBatch {
                      PlasticState* state) const {
       V multiplier;
       const std::array<V, 7> out = returned(b, k, t, multiplier);
-      V q0;
+      V q0, stopped, plastic;
       load_lanes(q0, &b.q0[k]);
-      const auto cone_point = q0 > T(0);
+      load_lanes(stopped, &b.stopped[k]);
+      gather_lanes(plastic, [&](int l) { return T(state[l].plastic); });
+      // The plastic cone points that stopped take the returned stress, selected by mask (lane
+      // by lane the copies went through memory); the other plastic lanes the per-point return.
+      const auto take = (plastic != T(0)) & (q0 > T(0)) & (stopped != T(0));
+      for (int c = 0; c < 7; ++c) t[c] = take ? out[c] : t[c];
       for (int l = 0; l < batch_lanes; ++l) {
         const std::size_t lane = static_cast<std::size_t>(l);
         if (state[lane].plastic == 0.0) continue;
-        if ((lane_of(cone_point, l) != 0) & (b.stopped[k + lane] != T(0))) {
-          for (int c = 0; c < 7; ++c) t[c][l] = out[c][l];
-          state[lane].plastic_shear_strain += static_cast<double>(multiplier[l]);
+        if (lane_of(take, l) != 0) {
+          state[lane].plastic_shear_strain += static_cast<double>(lane_of(multiplier, l));
         } else {
           Stress point;
           for (int c = 0; c < 7; ++c) point[c] = t[c][l];
