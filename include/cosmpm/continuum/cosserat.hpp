@@ -24,6 +24,8 @@
 #include "cosmpm/continuum/rates.hpp"
 #include "cosmpm/core/compiler.hpp"
 #include "cosmpm/core/error.hpp"
+#include "cosmpm/core/pack.hpp"
+#include "cosmpm/core/pack_records.hpp"
 #include "cosmpm/core/types.hpp"
 #include "cosmpm/grid/boundary.hpp"
 #include "cosmpm/grid/grid.hpp"
@@ -173,14 +175,31 @@ requires(Model::is_cosserat&& material::dimension_of<Model> == 2) class Cosserat
   }
 
   // Grid to particle: spin (PIC/FLIP blend, as the velocity) and micro-rotation from the
-  // nodal spin and spin acceleration at the particle.
-  template <class Store>
+  // nodal spin and spin acceleration at the particle; V a double, or a pack of W doubles for
+  // particles p, ..., p + W - 1 (each lane the double's arithmetic).
+  template <class Store, class V>
   static void update_rotations(Store& particles, Index p, double dt, double flip,
-                               const std::array<double, 1>& spin_grid,
-                               const std::array<double, 1>& spin_acceleration) {
-    double& spin = particles.template get<particles::field::MicroSpin>()[p];
-    spin = flip * (spin + dt * spin_acceleration[0]) + (1.0 - flip) * spin_grid[0];
-    particles.template get<particles::field::MicroRotation>()[p] += dt * spin_grid[0];
+                               const std::array<V, 1>& spin_grid,
+                               const std::array<V, 1>& spin_acceleration) {
+    double* const spin = &particles.template get<particles::field::MicroSpin>()[p];
+    double* const rotation = &particles.template get<particles::field::MicroRotation>()[p];
+    constexpr int W = lane_count<V>();
+    const auto load = [](const double* from) -> V {
+      if constexpr (W == 1) {
+        return *from;
+      } else {
+        return cosmpm::detail::load_pack<W>(from);
+      }
+    };
+    const auto store = [](double* to, const V& value) {
+      if constexpr (W == 1) {
+        *to = value;
+      } else {
+        cosmpm::detail::store_pack<W>(to, value);
+      }
+    };
+    store(spin, flip * (load(spin) + dt * spin_acceleration[0]) + (1.0 - flip) * spin_grid[0]);
+    store(rotation, load(rotation) + dt * spin_grid[0]);
   }
 
   // New particles take the (scaled) micro-inertia of the settings.

@@ -164,9 +164,23 @@ COSMPM_ALWAYS_INLINE void map_from_grid(State& s, Index p, const auto& pass,
   for (int d = 0; d < Dim; ++d) {
     all_inside &= all_lanes<W>(xi[d] * (pass.stencil_grid.last[d] - xi[d]) > 0.0);
   }
+  // The rotations on the packs where the continuum takes them (Cosserat), else lane by lane.
+  // APIC carries no affine rotation field: the rotations take the grid's (PIC).
+  constexpr bool packed_rotations = R > 0 && requires(std::array<P, R> rates) {
+    State::continuum_type::update_rotations(particles, p, dt, flip, rates, rates);
+  };
+  if constexpr (packed_rotations) {
+    std::array<P, R> spin_grid, spin_acceleration;
+    for (int k = 0; k < R; ++k) {
+      spin_grid[k] = grid_values.value[Record::spin + k];
+      spin_acceleration[k] = grid_values.value[Record::spin_acceleration + k];
+    }
+    State::continuum_type::update_rotations(particles, p, dt, affine ? 0.0 : flip, spin_grid,
+                                            spin_acceleration);
+  }
   for (int l = 0; l < W; ++l) {
     const Index q = p + l;
-    if constexpr (R > 0) {
+    if constexpr (R > 0 && !packed_rotations) {
       std::array<double, R> spin_grid, spin_acceleration;
       for (int k = 0; k < R; ++k) {
         spin_grid[k] = lane<W>(grid_values.value[Record::spin + k], l);
