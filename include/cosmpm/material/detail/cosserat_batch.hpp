@@ -147,8 +147,9 @@ class CosseratBatch {
         for (std::size_t k = begin; k < end; ++k) {
           stress[k] = cosserat_trial(stress[k], increment[k], moduli);
           const auto elastic = Cone::is_elastic(Cone::split_trial(stress[k], weights));
+          const V plastic = elastic ? V{} : V{} + T(1);  // the flags as doubles, by one select
           for (std::size_t l = 0; l < L; ++l)
-            state[k * L + l].plastic = static_cast<double>(lane_of(elastic, int(l)) == 0);
+            state[k * L + l].plastic = static_cast<double>(lane_of(plastic, int(l)));
           scratch.index[queued] = k;
           queued += static_cast<std::size_t>(!cosmpm::all_lanes<L>(elastic));
         }
@@ -313,6 +314,11 @@ class CosseratBatch {
       // by lane the copies went through memory); the other plastic lanes the per-point return.
       const auto take = (plastic != T(0)) & (q0 > T(0)) & (stopped != T(0));
       for (int c = 0; c < 7; ++c) t[c] = take ? out[c] : t[c];
+      if (cosmpm::all_lanes<batch_lanes>(take)) {  // the usual pack: no lane left to redo
+        for (int l = 0; l < batch_lanes; ++l)
+          state[l].plastic_shear_strain += static_cast<double>(lane_of(multiplier, l));
+        return;
+      }
       for (int l = 0; l < batch_lanes; ++l) {
         const std::size_t lane = static_cast<std::size_t>(l);
         if (state[lane].plastic == 0.0) continue;
