@@ -141,22 +141,83 @@ COSMPM_ALWAYS_INLINE void add_to_row(double* row, int k, double weight,
   r += add;
   std::memcpy(row + k, &r, sizeof(V));
 }
-}  // namespace detail
 
-// Particle-to-grid: adds to the C components of `records`
-//   N_n weighted[c]                                          c < W
-//   N_n weighted[c] + sum_d dN_n/dx_d by_gradient[c - W][d]   W <= c < C
-// (mass and momentum are weighted only; forces also take the stress divergence).
-//
-// A row of the stencil is S * C consecutive doubles, so it is updated in packs of the
-// register width (core/pack.hpp; GCC left the per-component loops scalar). The per-node
-// factors are laid out as that row first, with zero stress-divergence factors for the
-// weighted-only components: adding their product, +-0, changes no nonzero sum.
+// scatter (below) for records of whole packs, C a multiple of the register width P: a node's
+// record is C / P packs, whose terms are formed in registers from packs of the particle's
+// weighted values and gradient factors. The row arrays' lane-by-lane loads were the largest
+// part of the Cosserat scatter (8 doubles per node; docs/performance.md, "The scatter by node
+// packs"). Per lane the operations of the row arrays, in their order; a weighted-only lane of
+// a pack that also holds forces adds products with a zero factor, which move no sum (a record
+// starts at +0, and +0 + -0 is +0).
 template <int W, int Dim, Kernel K, std::size_t C>
-COSMPM_ALWAYS_INLINE void scatter(
+COSMPM_ALWAYS_INLINE void scatter_node_packs(
     const SeparableStencil<Dim, K>& s, double* records, const std::array<double, C>& weighted,
     const std::type_identity_t<std::array<std::array<double, Dim>, C - W>>& by_gradient) {
-  static_assert(W <= static_cast<int>(C), "shape::scatter: more weighted-only than components");
+  constexpr int P = pack_width;
+  constexpr int R = static_cast<int>(C);
+  constexpr int J = R / P;  // packs per node
+  constexpr int S = K::support;
+  using V = Pack<P>;
+  // Pack j (components j P, ..., j P + P - 1) takes gradient terms if one of them does.
+  constexpr auto forced = [](int j) { return (j + 1) * P > W; };
+  std::array<V, J> weighted_packs;
+  std::array<std::array<V, Dim>, J> factor_packs{};  // by_gradient, 0 for c < W
+  COSMPM_UNROLL
+  for (int j = 0; j < J; ++j) {
+    gather_lanes(weighted_packs[j], [&](int l) { return weighted[j * P + l]; });
+    if (!forced(j)) continue;
+    COSMPM_UNROLL
+    for (int d = 0; d < Dim; ++d) {
+      gather_lanes(factor_packs[j][d], [&](int l) {
+        const int c = j * P + l;
+        return c < W ? 0.0 : by_gradient[c < W ? 0 : c - W][d];
+      });
+    }
+  }
+  // Node i along x: N_x(i) a + dN_x(i) b_x, and N_x(i) b_d for the row's derivatives d >= 1.
+  std::array<std::array<V, J>, S> along;
+  std::array<std::array<std::array<V, Dim>, J>, S> across;
+  COSMPM_UNROLL
+  for (int i = 0; i < S; ++i) {
+    COSMPM_UNROLL
+    for (int j = 0; j < J; ++j) {
+      along[i][j] = s.w[0][i] * weighted_packs[j];
+      if (!forced(j)) continue;
+      along[i][j] += s.dw[0][i] * factor_packs[j][0];
+      COSMPM_UNROLL
+      for (int d = 1; d < Dim; ++d) across[i][j][d] = s.w[0][i] * factor_packs[j][d];
+    }
+  }
+  COSMPM_UNROLL
+  for (int r = 0; r < SeparableStencil<Dim, K>::rows; ++r) {
+    double* const row = records + (s.first_node + s.row_offset(r)) * R;
+    double weight;
+    std::array<double, Dim> gradient;
+    s.row_factors(r, weight, gradient);
+    COSMPM_UNROLL
+    for (int i = 0; i < S; ++i) {
+      COSMPM_UNROLL
+      for (int j = 0; j < J; ++j) {
+        V add = weight * along[i][j];
+        if constexpr (W < R) {  // as the row arrays: zero factors where a record has forces
+          COSMPM_UNROLL
+          for (int d = 1; d < Dim; ++d) add += gradient[d] * (forced(j) ? across[i][j][d] : V{});
+        }
+        double* const at = row + i * R + j * P;
+        V sum;
+        std::memcpy(&sum, at, sizeof(V));
+        sum += add;
+        std::memcpy(at, &sum, sizeof(V));
+      }
+    }
+  }
+}
+
+// scatter for any C: the terms of a stencil row laid out as the row's doubles, added in packs.
+template <int W, int Dim, Kernel K, std::size_t C>
+COSMPM_ALWAYS_INLINE void scatter_rows(
+    const SeparableStencil<Dim, K>& s, double* records, const std::array<double, C>& weighted,
+    const std::type_identity_t<std::array<std::array<double, Dim>, C - W>>& by_gradient) {
   constexpr int S = K::support;
   constexpr int F = static_cast<int>(C) - W;
   constexpr int R = static_cast<int>(C);
@@ -213,6 +274,30 @@ COSMPM_ALWAYS_INLINE void scatter(
       for (int k = paired; k < N; ++k)
         detail::add_to_row<double>(row, k, weight, gradient, along, across);
     }
+  }
+}
+}  // namespace detail
+
+// Particle-to-grid: adds to the C components of `records`
+//   N_n weighted[c]                                          c < W
+//   N_n weighted[c] + sum_d dN_n/dx_d by_gradient[c - W][d]   W <= c < C
+// (mass and momentum are weighted only; forces also take the stress divergence).
+//
+// A row of the stencil is S * C consecutive doubles, so it is updated in packs of the
+// register width (core/pack.hpp; GCC left the per-component loops scalar). The per-node
+// factors are laid out as that row first, with zero stress-divergence factors for the
+// weighted-only components: adding their product, +-0, changes no nonzero sum. Records of
+// whole packs skip that layout: their terms are formed in registers, node by node, with the
+// same sums bit for bit (detail::scatter_node_packs).
+template <int W, int Dim, Kernel K, std::size_t C>
+COSMPM_ALWAYS_INLINE void scatter(
+    const SeparableStencil<Dim, K>& s, double* records, const std::array<double, C>& weighted,
+    const std::type_identity_t<std::array<std::array<double, Dim>, C - W>>& by_gradient) {
+  static_assert(W <= static_cast<int>(C), "shape::scatter: more weighted-only than components");
+  if constexpr (pack_width > 1 && C % pack_width == 0) {
+    detail::scatter_node_packs<W>(s, records, weighted, by_gradient);
+  } else {
+    detail::scatter_rows<W>(s, records, weighted, by_gradient);
   }
 }
 
