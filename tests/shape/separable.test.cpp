@@ -205,7 +205,7 @@ TEST_CASE_TEMPLATE("shape::scatter by node packs equals the row arrays' scatter 
     CHECK(scatter_paths::differing_doubles<2, K, 1, 4>(4) == 0);
     CHECK(scatter_paths::differing_doubles<2, K, 4, 4>(5) == 0);
     CHECK(scatter_paths::differing_doubles<3, K, 10, 16>(6) == 0);
-    CHECK(scatter_paths::differing_doubles<2, K, P, P>(7) == 0);  // 2D MUSL's remap at P = 2
+    CHECK(scatter_paths::differing_doubles<2, K, P, P>(7) == 0);   // 2D MUSL's remap at P = 2
     CHECK(scatter_paths::differing_doubles<2, K, 9, 12>(8) == 0);  // 2D Cosserat with APIC
   }
 }
