@@ -184,22 +184,10 @@ requires(Model::is_cosserat&& material::dimension_of<Model> == 2) class Cosserat
     double* const spin = &particles.template get<particles::field::MicroSpin>()[p];
     double* const rotation = &particles.template get<particles::field::MicroRotation>()[p];
     constexpr int W = lane_count<V>();
-    const auto load = [](const double* from) -> V {
-      if constexpr (W == 1) {
-        return *from;
-      } else {
-        return cosmpm::detail::load_pack<W>(from);
-      }
-    };
-    const auto store = [](double* to, const V& value) {
-      if constexpr (W == 1) {
-        *to = value;
-      } else {
-        cosmpm::detail::store_pack<W>(to, value);
-      }
-    };
-    store(spin, flip * (load(spin) + dt * spin_acceleration[0]) + (1.0 - flip) * spin_grid[0]);
-    store(rotation, load(rotation) + dt * spin_grid[0]);
+    using cosmpm::detail::load_pack, cosmpm::detail::store_pack;
+    store_pack<W>(spin, flip * (load_pack<W>(spin) + dt * spin_acceleration[0]) +
+                            (1.0 - flip) * spin_grid[0]);
+    store_pack<W>(rotation, load_pack<W>(rotation) + dt * spin_grid[0]);
   }
 
   // New particles take the (scaled) micro-inertia of the settings.

@@ -21,13 +21,22 @@ template <int W>
 struct UnalignedPack {
   typedef double type __attribute__((vector_size(W * sizeof(double)), aligned(sizeof(double))));
 };
+// W = 1 is a double (Pack<1>), so callers written for any width need no case of their own.
 template <int W>
 COSMPM_ALWAYS_INLINE Pack<W> load_pack(const double* from) {
-  return *reinterpret_cast<const typename UnalignedPack<W>::type*>(from);
+  if constexpr (W == 1) {
+    return *from;
+  } else {
+    return *reinterpret_cast<const typename UnalignedPack<W>::type*>(from);
+  }
 }
 template <int W>
 COSMPM_ALWAYS_INLINE void store_pack(double* to, const Pack<W>& p) {
-  *reinterpret_cast<typename UnalignedPack<W>::type*>(to) = p;
+  if constexpr (W == 1) {
+    *to = p;
+  } else {
+    *reinterpret_cast<typename UnalignedPack<W>::type*>(to) = p;
+  }
 }
 
 #if defined(__AVX__) && (defined(__GNUC__) || defined(__clang__))
