@@ -140,6 +140,22 @@ class BlockScheduler {
     return {first_invalid, first_misplaced};
   }
 
+  // The cells along the slowest axis (Dim - 1, whose index strides are the longest) spanned by
+  // the blocks that hold particles, as {first, last}; first > last if no block holds one. As
+  // sorted by the last bucket() or resort().
+  std::array<Index, 2> occupied_span() const {
+    const Index* start = block_start_.data();
+    const auto total = static_cast<Index>(block_start_.size()) - 1;
+    Index first = 0;
+    while (first < total && start[first + 1] == start[first]) ++first;
+    if (first == total) return {1, 0};
+    Index last = total - 1;
+    while (start[last + 1] == start[last]) --last;
+    const Index plane = total / blocks_per_axis_[Dim - 1];  // blocks per slowest-axis layer
+    const Index cells = block_cells(Dim - 1);
+    return {first / plane * cells, (last / plane + 1) * cells - 1};
+  }
+
   // Threads that ran the last coloured pass (1 when it ran serially): lets a test check that
   // the parallel path it means to exercise actually ran.
   int last_team_size() const {

@@ -53,7 +53,8 @@ struct EngineState {
         contact(std::move(contact_law)),
         nodes(background.node_count()),
         blocks(background),
-        threads(resolve_thread_count(parameter_values.threads)) {}
+        threads(resolve_thread_count(parameter_values.threads)),
+        node_range{0, background.node_count()} {}
 
   grid::Grid<Dim> grid;
   Continuum continuum;  // holds the constitutive model
@@ -65,6 +66,11 @@ struct EngineState {
   BlockScheduler<Dim, Kernel> blocks;
   int threads = 1;
   StepClock clock;
+  // The nodes the step's particles may reach (stages/node_range.hpp); every node outside holds
+  // zero fields, and the dense node passes skip them.
+  NodeRange node_range;
+  // False: the node passes run over every node (a check that the range changes nothing).
+  bool prune_node_range = true;
   double typical_particle_mass = 0.0;  // the largest particle mass added
   double max_density = 0.0;
   StrayReport strays;

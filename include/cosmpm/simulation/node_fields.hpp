@@ -5,12 +5,20 @@
 // particle-grid maps instead read and write records of C doubles per node (node n's component
 // c at n * C + c), so a stencil row is one run of memory reached from one address; node passes
 // copy between the two.
+#include <algorithm>
 #include <cstddef>
 #include <vector>
 
 #include "cosmpm/core/types.hpp"
 
 namespace cosmpm {
+
+// A contiguous run of node indices, [first, end).
+struct NodeRange {
+  Index first;
+  Index end;
+  Index size() const { return end - first; }
+};
 
 // Translational fields per node, and R rotational degrees of freedom per node (the
 // continuum's; Cosserat 2D: R = 1, the micro-rotation), stored node-major (n * R + k) and
@@ -41,6 +49,19 @@ struct NodeFields {
     acceleration.assign(n, Vec<Dim>::Zero());
     for (auto* field : {&rotational_inertia, &spin_momentum, &moment, &spin, &spin_acceleration})
       field->assign(n * static_cast<std::size_t>(R), 0.0);
+  }
+
+  // Every field of the nodes [first, end) zeroed: what the node passes give a node no
+  // particle reaches.
+  void clear(Index first, Index end) {
+    if (end <= first) return;
+    const auto a = static_cast<std::ptrdiff_t>(first);
+    const auto b = static_cast<std::ptrdiff_t>(end);
+    std::fill(mass.begin() + a, mass.begin() + b, 0.0);
+    for (auto* field : {&momentum, &force, &velocity, &acceleration})
+      std::fill(field->begin() + a, field->begin() + b, Vec<Dim>::Zero());
+    for (auto* field : {&rotational_inertia, &spin_momentum, &moment, &spin, &spin_acceleration})
+      std::fill(field->begin() + a * R, field->begin() + b * R, 0.0);
   }
 };
 

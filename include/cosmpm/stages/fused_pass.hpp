@@ -36,6 +36,7 @@
 #include "cosmpm/shape/stencil_grid.hpp"
 #include "cosmpm/simulation/diagnostics.hpp"
 #include "cosmpm/stages/grid_to_particle.hpp"
+#include "cosmpm/stages/node_range.hpp"
 #include "cosmpm/stages/particle_to_grid.hpp"
 #include "cosmpm/stages/remap.hpp"
 #include "cosmpm/stages/stress_update.hpp"
@@ -195,6 +196,7 @@ void map_to_particles_and_grid(State& s, double dt) {
   const auto pass = map_pass(s, dt);
   const ScatterSources<State> from = scatter_sources(s);
   constexpr int C = State::scatter_record::all;
+  reach_all_nodes(s);  // the next step's stencils: not sorted into blocks yet
   const FusedHalfReport all =
       over_halves<C>(s, clear_scatter_records<true>(s),
                      [&](Index first, Index last, double* records, FusedHalfReport& r) {
@@ -277,6 +279,7 @@ void map_to_grid_or_reuse(State& s) {
     s.blocks.bucket(x, count, stencil_grid);  // the engine noted every change of block
   } else {
     s.blocks.resort(x, count, stencil_grid);  // a user may have moved particles
+    reach_all_nodes(s);                       // as the fused passes (the same records, bit for bit)
     const detail::ScatterSources<State> from = detail::scatter_sources(s);
     const detail::FusedHalfReport all = detail::over_halves<State::scatter_record::all>(
         s, detail::clear_scatter_records<true>(s),
@@ -314,6 +317,7 @@ void update_stress_and_map_to_grid(State& s, double dt, const double* velocity_r
   const Index count = s.particles.size();
   const shape::StencilGrid<State::dim> stencil_grid(s.grid);
   const ScatterSources<State> from = scatter_sources(s);
+  reach_all_nodes(s);  // the next step's stencils: not sorted into blocks yet
   const FusedHalfReport all = over_halves<State::scatter_record::all>(
       s, clear_scatter_records<true>(s),
       [&](Index first, Index last, double* records, FusedHalfReport& r) {

@@ -83,7 +83,7 @@ void grid_velocity_from_momentum(State& s, double dt) {
   constexpr int R = State::rotational_dofs;
   const double empty = s.empty_node_mass();
   auto& nodes = s.nodes;
-  for (Index n = 0; n < s.grid.node_count(); ++n) {
+  for (Index n = s.node_range.first; n < s.node_range.end; ++n) {
     if (nodes.mass[n] <= empty) {
       nodes.momentum[n].setZero();
       for (int k = 0; k < R; ++k) nodes.spin_momentum[n * R + k] = 0.0;
@@ -108,6 +108,8 @@ void update_grid(State& s, double dt) {
   auto& nodes = s.nodes;
   const double empty = s.empty_node_mass();
   const Index count = s.grid.node_count();
+  const Index first = s.node_range.first;  // the node passes skip nodes no particle reaches
+  const Index end = s.node_range.end;
   if constexpr (contact::AddsForces<decltype(s.contact), Dim>) {
     contact::ForceView<Dim> view{s.grid,
                                  nodes.mass,
@@ -158,8 +160,8 @@ void update_grid(State& s, double dt) {
     // the trial velocity, and the impulse recorded at the end, start from a field that does
     // not penetrate. The correction is not an acceleration: FLIP particles do not receive it.
     grid_velocity_from_momentum(s, dt);
-    COSMPM_OMP_PARALLEL_FOR(s.threads, count)
-    for (Index n = 0; n < count; ++n) {
+    COSMPM_OMP_PARALLEL_FOR(s.threads, end - first)
+    for (Index n = first; n < end; ++n) {
       if (nodes.mass[n] <= empty) {
         clear_empty_node(n);
         continue;
@@ -167,8 +169,8 @@ void update_grid(State& s, double dt) {
       update_node(n, 1.0 / nodes.mass[n], Vec<Dim>(nodes.momentum[n]), /*spin_is_rate=*/true);
     }
   } else {
-    COSMPM_OMP_PARALLEL_FOR(s.threads, count)
-    for (Index n = 0; n < count; ++n) {
+    COSMPM_OMP_PARALLEL_FOR(s.threads, end - first)
+    for (Index n = first; n < end; ++n) {
       const double m = nodes.mass[n];
       if (m <= empty) {
         clear_empty_node(n);
@@ -187,8 +189,8 @@ void update_grid(State& s, double dt) {
   s.gather.resize(static_cast<std::size_t>(Record::all * count));
   double* const gathered = s.gather.data();
   const double inverse_dt = 1.0 / dt;
-  COSMPM_OMP_PARALLEL_FOR(s.threads, count)
-  for (Index n = 0; n < count; ++n) {
+  COSMPM_OMP_PARALLEL_FOR(s.threads, end - first)
+  for (Index n = first; n < end; ++n) {
     nodes.acceleration[n] = (nodes.velocity[n] - nodes.momentum[n]) * inverse_dt;
     double* const record = gathered + n * Record::all;
     for (int d = 0; d < Dim; ++d) {

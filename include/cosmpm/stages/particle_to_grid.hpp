@@ -20,6 +20,7 @@
 #include "cosmpm/shape/transfer.hpp"
 #include "cosmpm/simulation/block_scheduler.hpp"
 #include "cosmpm/stages/grid_update.hpp"
+#include "cosmpm/stages/node_range.hpp"
 #include "cosmpm/transfer/apic.hpp"
 
 namespace cosmpm::stages {
@@ -224,7 +225,8 @@ void discard_pending_upper(State& s) {
   s.upper_first = s.upper_end = 0;
 }
 
-// The node records of the particle-to-grid map, zeroed, sized for the grid.
+// The node records of the particle-to-grid map, sized for the grid, zeroed in the node range
+// (no other record is read).
 template <bool with_forces, class State>
 double* clear_scatter_records(State& s) {
   using Record = typename State::scatter_record;
@@ -232,7 +234,8 @@ double* clear_scatter_records(State& s) {
   const Index nodes = s.grid.node_count();
   discard_pending_upper(s);
   s.scatter.resize(static_cast<std::size_t>(Record::all * nodes));
-  std::fill(s.scatter.begin(), s.scatter.begin() + C * nodes, 0.0);
+  std::fill(s.scatter.begin() + C * s.node_range.first, s.scatter.begin() + C * s.node_range.end,
+            0.0);
   s.prescattered = false;
   return s.scatter.data();
 }
@@ -242,6 +245,7 @@ double* clear_scatter_records(State& s) {
 template <bool with_forces, class State>
 bool scatter_particles(State& s) {
   constexpr int Dim = State::dim;
+  reach_occupied_nodes(s);  // every stencil lies in its particle's block, or the pass fails
   double* const records = clear_scatter_records<with_forces>(s);
   const auto& particles = s.particles;
   const ScatterSources<State> from = scatter_sources(s);
@@ -286,15 +290,15 @@ void nodes_from_records(State& s, bool with_forces) {
   using Record = typename State::scatter_record;
   // A grid distributed over several processes would sum the records of the nodes its
   // neighbours share here (halo exchange), before any node pass reads them.
-  const Index count = s.grid.node_count();
+  const NodeRange range = s.node_range;
   const Index size = with_forces ? Record::all : Record::weighted;  // per node
   double* const scattered = s.scatter.data();
   const detail::PendingUpper pending = detail::take_pending_upper(s, size);
   auto& nodes = s.nodes;
   // In the node loops' static shares (as update_grid's): each thread writes the nodes it
   // updates next, where one thread writing them all cost the two-thread step 14-22 us.
-  COSMPM_OMP_PARALLEL(s.threads, count) {
-    const Share share = static_share(count);
+  COSMPM_OMP_PARALLEL(s.threads, range.size()) {
+    const Share share = node_share(range);
     detail::add_pending_upper(pending, scattered, share.first, share.last);
     for (Index n = share.first; n < share.last; ++n) {
       const double* const record = scattered + n * size;
@@ -346,7 +350,8 @@ void map_forces_to_grid(State& s) {
   using Model = typename State::model_type;
   auto& nodes = s.nodes;
   const Index count = s.grid.node_count();
-  for (Index n = 0; n < count; ++n) {
+  const NodeRange range = s.node_range;  // the stencils of the step's map_to_grid
+  for (Index n = range.first; n < range.end; ++n) {
     nodes.momentum[n] *= nodes.mass[n];
     for (int k = 0; k < R; ++k)
       nodes.spin_momentum[n * R + k] *= nodes.rotational_inertia[n * R + k];
@@ -355,7 +360,7 @@ void map_forces_to_grid(State& s) {
   s.scatter.resize(std::max(s.scatter.size(), static_cast<std::size_t>(forces * count)));
   s.prescattered = false;
   detail::discard_pending_upper(s);
-  std::fill(s.scatter.begin(), s.scatter.begin() + forces * count, 0.0);
+  std::fill(s.scatter.begin() + forces * range.first, s.scatter.begin() + forces * range.end, 0.0);
   require_start_stencils(s, "map_forces_to_grid");
   const auto& mass = s.particles.template get<particles::field::Mass>();
   const auto& vol = s.particles.template get<particles::field::Volume>();
@@ -371,7 +376,7 @@ void map_forces_to_grid(State& s) {
     force_contribution<State>(mass[p], vol[p], stress[p], gravity, weighted.data(), by_gradient);
     shape::scatter<0>(st, records, weighted, by_gradient);
   });
-  for (Index n = 0; n < count; ++n) {
+  for (Index n = range.first; n < range.end; ++n) {
     for (int d = 0; d < Dim; ++d) nodes.force[n][d] = records[n * forces + d];
     for (int k = 0; k < R; ++k) nodes.moment[n * R + k] = records[n * forces + Dim + k];
   }

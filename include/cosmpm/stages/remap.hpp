@@ -14,6 +14,7 @@
 #include "cosmpm/shape/stencil_grid.hpp"
 #include "cosmpm/shape/transfer.hpp"
 #include "cosmpm/stages/grid_update.hpp"
+#include "cosmpm/stages/node_range.hpp"
 #include "cosmpm/stages/particle_to_grid.hpp"
 
 namespace cosmpm::stages {
@@ -46,7 +47,8 @@ COSMPM_ALWAYS_INLINE void remap_particle(const State& s, Index p,
   shape::scatter<remap_components<State>>(st, records, weighted, {});
 }
 
-// The remap records of s.scatter, zeroed, sized for the grid (and for the later maps' records).
+// The remap records of s.scatter, sized for the grid (and for the later maps' records),
+// zeroed in the node range (the start-of-step stencils lie in it; no other record is read).
 template <class State>
 double* clear_remap_records(State& s) {
   const std::size_t nodes = static_cast<std::size_t>(s.grid.node_count());
@@ -54,8 +56,9 @@ double* clear_remap_records(State& s) {
   s.scatter.resize(std::max(s.scatter.size(), all * nodes));
   s.prescattered = false;
   discard_pending_upper(s);
-  constexpr auto width = static_cast<std::size_t>(remap_components<State>);
-  std::fill(s.scatter.begin(), s.scatter.begin() + static_cast<std::ptrdiff_t>(width * nodes), 0.0);
+  constexpr Index width = remap_components<State>;
+  std::fill(s.scatter.begin() + width * s.node_range.first,
+            s.scatter.begin() + width * s.node_range.end, 0.0);
   return s.scatter.data();
 }
 
@@ -67,11 +70,11 @@ void velocities_from_remap(State& s, double* records, double dt) {
   constexpr int R = State::rotational_dofs;
   constexpr int C = remap_components<State>;
   auto& nodes = s.nodes;
-  const Index count = s.grid.node_count();
+  const NodeRange range = s.node_range;
   const double empty = s.empty_node_mass();
   const PendingUpper pending = take_pending_upper(s, C);
-  COSMPM_OMP_PARALLEL(s.threads, count) {
-    const Share share = static_share(count);  // the node loops' static shares
+  COSMPM_OMP_PARALLEL(s.threads, range.size()) {
+    const Share share = node_share(range);  // the node loops' static shares
     add_pending_upper(pending, records, share.first, share.last);
     for (Index n = share.first; n < share.last; ++n) {
       const double* const record = records + n * C;

@@ -164,8 +164,9 @@ const double* rate_records(State& s, const std::vector<Vec<State::dim>>& node_ve
     return node_velocity.data()->data();
   } else {
     s.gather.resize(static_cast<std::size_t>(Record::all * nodes));
-    COSMPM_OMP_PARALLEL_FOR(s.threads, nodes)  // the node loops' static shares
-    for (Index n = 0; n < nodes; ++n) {
+    const NodeRange range = s.node_range;             // the stencils lie in it
+    COSMPM_OMP_PARALLEL_FOR(s.threads, range.size())  // the node loops' static shares
+    for (Index n = range.first; n < range.end; ++n) {
       for (int d = 0; d < Dim; ++d) s.gather[n * size + Record::velocity + d] = node_velocity[n][d];
       for (int k = 0; k < R; ++k) s.gather[n * size + Record::spin + k] = node_spin[n * R + k];
     }
