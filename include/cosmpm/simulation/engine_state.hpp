@@ -82,6 +82,7 @@ struct EngineState {
   // The fused schemes' particle pass scattered the next step's records (stages/fused_pass.hpp);
   // cleared by anything that writes the records or may have changed the particles since.
   bool prescattered = false;
+  NodeRange prescattered_nodes{0, 0};  // the nodes its stencils reach
   // Its second half's records, upper_width doubles per node, pending in the nodes
   // [upper_first, upper_end) until the node pass that reads the records adds them (zero
   // elsewhere and after); and the threads that ran the pass last.

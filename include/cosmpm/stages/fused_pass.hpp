@@ -174,10 +174,9 @@ FusedHalfReport over_halves(State& s, double* const lower, Visit&& visit) {
   // The second half's nodes: from its lowest first node to its highest one's stencil end.
   const FusedHalfReport& second = reports[1];
   if (second.highest_node >= 0) {
-    std::array<Index, State::dim> last_offset;
-    last_offset.fill(State::kernel_type::support - 1);
-    s.upper_first = second.lowest_node;
-    s.upper_end = second.highest_node + s.grid.node_index(last_offset) + 1;
+    const NodeRange nodes = scattered_nodes(s, second);
+    s.upper_first = nodes.first;
+    s.upper_end = nodes.end;
     s.upper_width = C;
   }
   FusedHalfReport all = reports[0];
@@ -185,7 +184,19 @@ FusedHalfReport over_halves(State& s, double* const lower, Visit&& visit) {
   all.first_bad = std::min(all.first_bad, second.first_bad);
   all.first_moved = std::min(all.first_moved, second.first_moved);
   all.first_invalid = std::min(all.first_invalid, second.first_invalid);
+  all.lowest_node = std::min(all.lowest_node, second.lowest_node);
+  all.highest_node = std::max(all.highest_node, second.highest_node);
   return all;
+}
+
+// The nodes the stencils of a fused pass's scatter reach, from the report of a scatter of
+// every particle: the node range of the step that reads its records.
+template <class State>
+NodeRange scattered_nodes(const State& s, const FusedHalfReport& all) {
+  if (all.highest_node < 0) return {0, 0};
+  std::array<Index, State::dim> last_offset;
+  last_offset.fill(State::kernel_type::support - 1);
+  return {all.lowest_node, all.highest_node + s.grid.node_index(last_offset) + 1};
 }
 
 template <VelocityUpdate update, class State>
@@ -196,9 +207,8 @@ void map_to_particles_and_grid(State& s, double dt) {
   const auto pass = map_pass(s, dt);
   const ScatterSources<State> from = scatter_sources(s);
   constexpr int C = State::scatter_record::all;
-  reach_all_nodes(s);  // the next step's stencils: not sorted into blocks yet
   const FusedHalfReport all =
-      over_halves<C>(s, clear_scatter_records<true>(s),
+      over_halves<C>(s, clear_scatter_records<true>(s, all_nodes(s)),
                      [&](Index first, Index last, double* records, FusedHalfReport& r) {
                        Index p = first;
                        for (; p + W <= last; p += W) {
@@ -216,6 +226,7 @@ void map_to_particles_and_grid(State& s, double dt) {
                      });
   finish_map(s, all.first_outside, all.first_bad, all.first_moved);
   s.prescattered = all.first_outside == count && all.first_invalid == count;
+  s.prescattered_nodes = scattered_nodes(s, all);
 }
 
 // Fused MUSL: map_to_particles, then each particle's updated momenta back to the grid at the
@@ -279,10 +290,9 @@ void map_to_grid_or_reuse(State& s) {
     s.blocks.bucket(x, count, stencil_grid);  // the engine noted every change of block
   } else {
     s.blocks.resort(x, count, stencil_grid);  // a user may have moved particles
-    reach_all_nodes(s);                       // as the fused passes (the same records, bit for bit)
     const detail::ScatterSources<State> from = detail::scatter_sources(s);
     const detail::FusedHalfReport all = detail::over_halves<State::scatter_record::all>(
-        s, detail::clear_scatter_records<true>(s),
+        s, detail::clear_scatter_records<true>(s, all_nodes(s)),
         [&](Index first, Index last, double* records, detail::FusedHalfReport& r) {
           detail::scatter_next_range(s, from, first, last, stencil_grid, records, r);
         });
@@ -290,7 +300,11 @@ void map_to_grid_or_reuse(State& s) {
       typename State::stencil_type st;  // throws, naming the particle's position
       st.compute(stencil_grid, from.x[all.first_invalid], from.half[all.first_invalid]);
     }
+    s.prescattered_nodes = detail::scattered_nodes(s, all);
   }
+  // The records were cleared over every node and written within these: the step's node
+  // passes skip the rest (its node range set here, as map_to_grid sets it).
+  set_node_range(s, s.prescattered_nodes);
   s.prescattered = false;
   nodes_from_records(s, /*with_forces=*/true);
 }
@@ -317,9 +331,8 @@ void update_stress_and_map_to_grid(State& s, double dt, const double* velocity_r
   const Index count = s.particles.size();
   const shape::StencilGrid<State::dim> stencil_grid(s.grid);
   const ScatterSources<State> from = scatter_sources(s);
-  reach_all_nodes(s);  // the next step's stencils: not sorted into blocks yet
   const FusedHalfReport all = over_halves<State::scatter_record::all>(
-      s, clear_scatter_records<true>(s),
+      s, clear_scatter_records<true>(s, all_nodes(s)),
       [&](Index first, Index last, double* records, FusedHalfReport& r) {
         for (Index begin = first; begin < last; begin += update_run) {
           const Index end = std::min(begin + update_run, last);
@@ -335,6 +348,7 @@ void update_stress_and_map_to_grid(State& s, double dt, const double* velocity_r
                                                                   s.clock);
   }
   s.prescattered = all.first_invalid == count;
+  s.prescattered_nodes = scattered_nodes(s, all);
 }
 }  // namespace detail
 

@@ -47,11 +47,12 @@ void reach_occupied_nodes(State& s) {
   set_node_range(s, {low * layer, (high + 1) * layer});
 }
 
-// Every node: where particles are scattered at positions the blocks were not sorted by (the
-// fused passes scatter at the end-of-step positions).
+// Every node: the records a scatter at positions not yet sorted into blocks clears (the fused
+// passes, at the end-of-step positions). The next step's range then comes from the stencils
+// the scatter met (stages/fused_pass.hpp, map_to_grid_or_reuse).
 template <class State>
-void reach_all_nodes(State& s) {
-  set_node_range(s, {0, s.grid.node_count()});
+NodeRange all_nodes(const State& s) {
+  return {0, s.grid.node_count()};
 }
 
 // The calling thread's static share of a node range (static_share's split of its size).

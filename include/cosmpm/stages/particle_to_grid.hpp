@@ -225,17 +225,17 @@ void discard_pending_upper(State& s) {
   s.upper_first = s.upper_end = 0;
 }
 
-// The node records of the particle-to-grid map, sized for the grid, zeroed in the node range
-// (no other record is read).
+// The node records of the particle-to-grid map, sized for the grid, zeroed in `cleared` (the
+// step's node range, which no stencil leaves; every node for a scatter at positions not yet
+// sorted into blocks).
 template <bool with_forces, class State>
-double* clear_scatter_records(State& s) {
+double* clear_scatter_records(State& s, NodeRange cleared) {
   using Record = typename State::scatter_record;
   constexpr int C = with_forces ? Record::all : Record::weighted;
   const Index nodes = s.grid.node_count();
   discard_pending_upper(s);
   s.scatter.resize(static_cast<std::size_t>(Record::all * nodes));
-  std::fill(s.scatter.begin() + C * s.node_range.first, s.scatter.begin() + C * s.node_range.end,
-            0.0);
+  std::fill(s.scatter.begin() + C * cleared.first, s.scatter.begin() + C * cleared.end, 0.0);
   s.prescattered = false;
   return s.scatter.data();
 }
@@ -246,7 +246,7 @@ template <bool with_forces, class State>
 bool scatter_particles(State& s) {
   constexpr int Dim = State::dim;
   reach_occupied_nodes(s);  // every stencil lies in its particle's block, or the pass fails
-  double* const records = clear_scatter_records<with_forces>(s);
+  double* const records = clear_scatter_records<with_forces>(s, s.node_range);
   const auto& particles = s.particles;
   const ScatterSources<State> from = scatter_sources(s);
   const auto* const x = from.x;
