@@ -142,6 +142,16 @@ COSMPM_ALWAYS_INLINE void scatter_next_range(State& s, const ScatterSources<Stat
   for (; q < last; ++q) scatter_next(s, from, q, stencil_grid, records, report);
 }
 
+// The nodes the stencils of a fused pass's scatter reach, from the report of a scatter of
+// every particle: the node range of the step that reads its records.
+template <class State>
+NodeRange scattered_nodes(const State& s, const FusedHalfReport& all) {
+  if (all.highest_node < 0) return {0, 0};
+  std::array<Index, State::dim> last_offset;
+  last_offset.fill(State::kernel_type::support - 1);
+  return {all.lowest_node, all.highest_node + s.grid.node_index(last_offset) + 1};
+}
+
 // Runs visit(first, last, records, report) over the two halves of the particles, on up to two
 // threads: the first half into `lower` (zeroed, in s.scatter, C doubles per node), the second
 // into s.scatter_upper, left pending for the node pass that reads the records
@@ -187,16 +197,6 @@ FusedHalfReport over_halves(State& s, double* const lower, Visit&& visit) {
   all.lowest_node = std::min(all.lowest_node, second.lowest_node);
   all.highest_node = std::max(all.highest_node, second.highest_node);
   return all;
-}
-
-// The nodes the stencils of a fused pass's scatter reach, from the report of a scatter of
-// every particle: the node range of the step that reads its records.
-template <class State>
-NodeRange scattered_nodes(const State& s, const FusedHalfReport& all) {
-  if (all.highest_node < 0) return {0, 0};
-  std::array<Index, State::dim> last_offset;
-  last_offset.fill(State::kernel_type::support - 1);
-  return {all.lowest_node, all.highest_node + s.grid.node_index(last_offset) + 1};
 }
 
 template <VelocityUpdate update, class State>

@@ -16,11 +16,19 @@
 
 namespace cosmpm::stages {
 
+// Every node: the records a scatter at positions not yet sorted into blocks clears (the fused
+// passes, at the end-of-step positions). The next step's range then comes from the stencils
+// the scatter met (stages/fused_pass.hpp, map_to_grid_or_reuse).
+template <class State>
+NodeRange all_nodes(const State& s) {
+  return {0, s.grid.node_count()};
+}
+
 // The node range becomes `range` (every node with s.prune_node_range off); the nodes that
 // leave it are zeroed.
 template <class State>
 void set_node_range(State& s, NodeRange range) {
-  if (!s.prune_node_range) range = {0, s.grid.node_count()};
+  if (!s.prune_node_range) range = all_nodes(s);
   const NodeRange old = s.node_range;
   s.nodes.clear(old.first, std::min(range.first, old.end));
   s.nodes.clear(std::max(range.end, old.first), old.end);
@@ -45,14 +53,6 @@ void reach_occupied_nodes(State& s) {
   const Index low = std::max<Index>(0, first_cell - (S - 1));
   const Index high = std::min<Index>(s.grid.nodes(Dim - 1) - 1, last_cell + S);
   set_node_range(s, {low * layer, (high + 1) * layer});
-}
-
-// Every node: the records a scatter at positions not yet sorted into blocks clears (the fused
-// passes, at the end-of-step positions). The next step's range then comes from the stencils
-// the scatter met (stages/fused_pass.hpp, map_to_grid_or_reuse).
-template <class State>
-NodeRange all_nodes(const State& s) {
-  return {0, s.grid.node_count()};
 }
 
 // The calling thread's static share of a node range (static_share's split of its size).
