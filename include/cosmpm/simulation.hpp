@@ -187,6 +187,11 @@ class Simulation : detail::CompositionChecks<Dim, Kernel, Continuum, Contact, Sc
   }
   // Constitutive update, deformation gradient and volume from those rates.
   void update_stress(double dt) { stages::update_stress(state_, dt); }
+  // velocity_gradient_from_grid(node_velocity, node_spin) and update_stress(dt) in one pass.
+  void update_stress_from_grid(double dt, const std::vector<Vec<Dim>>& node_velocity,
+                               const std::vector<double>& node_spin = {}) {
+    stages::update_stress_from_grid(state_, dt, node_velocity, node_spin);
+  }
   // Fused schemes (integrator/fused.hpp): as map_to_grid(true), in the fused pass's order, or
   // the node fields from the records the last step's fused pass scattered while they are valid.
   void map_to_grid_or_reuse() { stages::map_to_grid_or_reuse(state_); }

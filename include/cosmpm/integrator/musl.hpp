@@ -14,8 +14,7 @@ struct MUSL {
     sim.update_grid(dt);
     sim.map_to_particles(dt);
     sim.remap_momentum(dt);
-    sim.velocity_gradient_from_grid(sim.nodes().velocity, sim.nodes().spin);
-    sim.update_stress(dt);
+    sim.update_stress_from_grid(dt, sim.nodes().velocity, sim.nodes().spin);
   }
 };
 

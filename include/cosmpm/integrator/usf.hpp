@@ -12,8 +12,7 @@ struct USF {
     sim.map_to_grid(/*with_forces=*/false);
     sim.grid_velocity_from_momentum(dt);
     // nodes().momentum now holds the start velocity, spin_momentum the start spin.
-    sim.velocity_gradient_from_grid(sim.nodes().momentum, sim.nodes().spin_momentum);
-    sim.update_stress(dt);
+    sim.update_stress_from_grid(dt, sim.nodes().momentum, sim.nodes().spin_momentum);
     sim.map_forces_to_grid();
     sim.update_grid(dt);
     sim.map_to_particles(dt);

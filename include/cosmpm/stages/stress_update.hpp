@@ -287,4 +287,37 @@ void update_stress(State& s, double dt) {
   }
 }
 
+// Stages 4a and 4b in one pass over the particles: velocity_gradient_from_grid(node_velocity,
+// node_spin), then update_stress(dt), run by run, so a run's rates are read back from the cache
+// they were just written to. Each particle's arithmetic is the separate stages', in the same
+// packs: the same bits. A continuum that averages the volumetric rate over cells
+// (antilocking::FBar) needs every particle's rate before any stress update: it runs them apart.
+template <class State>
+void update_stress_from_grid(State& s, double dt, const std::vector<Vec<State::dim>>& node_velocity,
+                             const std::vector<double>& node_spin) {
+  if constexpr (averages_volume<State>) {
+    velocity_gradient_from_grid(s, node_velocity, node_spin);
+    update_stress(s, dt);
+  } else {
+    const double* const records =
+        detail::rate_records(s, node_velocity, node_spin, "update_stress_from_grid");
+    const shape::StencilGrid<State::dim> stencil_grid(s.grid);
+    const Index count = s.particles.size();
+    constexpr Index run = detail::update_run;  // a whole number of packs: 4a's packs as apart
+    const Index runs = (count + run - 1) / run;
+    Index first_bad = count;
+    COSMPM_OMP_PARALLEL_FOR_MIN(s.threads, count, first_bad)
+    for (Index r = 0; r < runs; ++r) {
+      const Index begin = r * run;
+      const Index size = std::min(run, count - begin);
+      detail::rates_of_range(s, begin, begin + size, stencil_grid, records);
+      detail::update_stress_run(s, begin, size, dt, first_bad);
+    }
+    if (first_bad < count) {
+      throw_unstable_stress<State::dim, typename State::model_type>(s.particles, first_bad,
+                                                                    s.clock);
+    }
+  }
+}
+
 }  // namespace cosmpm::stages
