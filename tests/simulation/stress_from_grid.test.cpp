@@ -176,3 +176,17 @@ TEST_CASE("update_stress_from_grid: a nodal field of the wrong size is named") {
   CHECK_THROWS_WITH_AS(sim.update_stress_from_grid(dt, too_short),
                        doctest::Contains("update_stress_from_grid"), Error);
 }
+
+TEST_CASE("update_stress_from_grid: its rates are not left for a later update_stress") {
+  // The whole packs' rates go from stage 4a to 4b without EngineState::particle_rates; a later
+  // update_stress would find other rates there, so it asks for stage 4a first.
+  using Sim = Simulation<2, shape::Linear, continuum::Classical<Soil>, contact::SingleField,
+                         integrator::MUSL>;
+  Sim sim = sliding_block<Sim>(1, false);
+  const double dt = sim.time_step();
+  sim.step(dt);
+  CHECK_THROWS_WITH_AS(sim.update_stress(dt),
+                       doctest::Contains("call velocity_gradient_from_grid first"), Error);
+  sim.velocity_gradient_from_grid(sim.nodes().velocity);
+  CHECK_NOTHROW(sim.update_stress(dt));
+}

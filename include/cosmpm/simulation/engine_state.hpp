@@ -95,10 +95,11 @@ struct EngineState {
   // Particle positions in cell units at the last map_to_grid: the stencils of the step.
   std::vector<Vec<Dim>> stencil_cells;
   std::vector<rates_type> particle_rates;  // MUSL/USF: between rates and stress update
-  std::vector<double> cell_sums;           // antilocking::FBar: per-cell volume sums
-  std::vector<unsigned char> imposed;      // components the face conditions imposed, per node
-  std::vector<unsigned char> held;         // ... would impose on the field before contact
-  std::vector<Vec<Dim>> held_scratch;      // the field the prediction of `held` works on
+  bool rates_stored = false;           // particle_rates holds every particle's rates of the last 4a
+  std::vector<double> cell_sums;       // antilocking::FBar: per-cell volume sums
+  std::vector<unsigned char> imposed;  // components the face conditions imposed, per node
+  std::vector<unsigned char> held;     // ... would impose on the field before contact
+  std::vector<Vec<Dim>> held_scratch;  // the field the prediction of `held` works on
 
   const model_type& model() const { return continuum.model(); }
   double empty_node_mass() const {

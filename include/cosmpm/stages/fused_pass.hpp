@@ -336,10 +336,14 @@ void update_stress_and_map_to_grid(State& s, double dt, const double* velocity_r
       [&](Index first, Index last, double* records, FusedHalfReport& r) {
         for (Index begin = first; begin < last; begin += update_run) {
           const Index end = std::min(begin + update_run, last);
-          // Before the scatter moves the run's stencils to the new positions.
+          // Before the scatter moves the run's stencils to the new positions; the whole packs'
+          // rates handed over as packs where 4b takes them.
+          RunRates<State> rates;
+          PackedRates<State>* const held =
+              velocity_records != nullptr && !rates.empty() ? rates.data() : nullptr;
           if (velocity_records != nullptr)
-            rates_of_range(s, begin, end, stencil_grid, velocity_records);
-          update_stress_run(s, begin, end - begin, dt, r.first_bad);
+            rates_of_range(s, begin, end, stencil_grid, velocity_records, held);
+          update_stress_run(s, begin, end - begin, dt, r.first_bad, held);
           scatter_next_range(s, from, begin, end, stencil_grid, records, r);
         }
       });
@@ -349,6 +353,7 @@ void update_stress_and_map_to_grid(State& s, double dt, const double* velocity_r
   }
   s.prescattered = all.first_invalid == count;
   s.prescattered_nodes = scattered_nodes(s, all);
+  if (velocity_records != nullptr) s.rates_stored = false;  // handed over, not stored
 }
 }  // namespace detail
 

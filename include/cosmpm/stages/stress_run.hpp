@@ -22,9 +22,52 @@ namespace cosmpm::stages::detail {
 // model's batch update; notes the first whose stress or volume came out bad.
 inline constexpr Index update_run = 64;
 
+// Whether stage 4b rotates the stresses on packs (the continuum's rotate_and_increment_values),
+// with the records transposed in registers (core/pack_records.hpp); each lane's arithmetic is
+// the one-particle path's.
+template <class State>
+inline constexpr bool rotates_packs = [] {
+  constexpr int Dim = State::dim;
+  constexpr int R = State::rotational_dofs;
+  constexpr int W = pack_width;
+  constexpr int n = State::model_type::strain_type::SizeAtCompileTime;
+  using Continuum = typename State::continuum_type;
+  using P = Pack<W>;
+  if constexpr (W == 1 || R > 1 || (R > 0 && Dim != 2)) {
+    return false;
+  } else if constexpr (R == 0) {
+    return requires(std::array<std::array<P, Dim>, Dim> g, std::array<P, n> sigma) {
+      Continuum::rotate_and_increment_values(g, 0.0, sigma);
+    };
+  } else {
+    return requires(std::array<std::array<P, Dim>, Dim> g, P spin, std::array<P, Dim> grad,
+                    std::array<P, n> sigma) {
+      Continuum::rotate_and_increment_values(g, spin, grad, 0.0, sigma);
+    };
+  }
+}();
+
+// One pack's rates, handed from stage 4a to 4b in registers or on the stack where the two run
+// in one pass (stress_update.hpp, update_stress_from_grid), instead of through
+// EngineState::particle_rates: stored lane by lane and loaded back, they were a transpose each
+// way and a 7-double record per particle written to memory (Cosserat).
+template <class State>
+struct PackedRates {
+  using P = Pack<pack_width>;
+  std::array<std::array<P, State::dim>, State::dim> velocity_gradient;  // [i][j] = dv_i / dx_j
+  std::array<P, State::rotational_dofs> spin;
+  std::array<std::array<P, State::dim>, State::rotational_dofs> spin_gradient;
+};
+template <class State>
+using RunRates =
+    std::array<PackedRates<State>, (rotates_packs<State> ? update_run / pack_width : 0)>;
+
+// held: the rates of the run's whole packs from stage 4a (with rotates_packs), else null for
+// EngineState::particle_rates; the particles after the last whole pack always come from there.
 template <class State>
 COSMPM_ALWAYS_INLINE void update_stress_run(State& s, Index begin, Index size, double dt,
-                                            Index& first_bad) {
+                                            Index& first_bad,
+                                            const PackedRates<State>* held = nullptr) {
   constexpr int Dim = State::dim;
   using Model = typename State::model_type;
   using Continuum = typename State::continuum_type;
@@ -39,25 +82,9 @@ COSMPM_ALWAYS_INLINE void update_stress_run(State& s, Index begin, Index size, d
   // Cosserat step runs 8-9 % faster than with it after the call (docs/performance.md).
   constexpr int W = pack_width;
   constexpr int n = strain_type::SizeAtCompileTime;
-  // The rotation on packs (the continuum's rotate_and_increment_values), with the records
-  // transposed in registers (core/pack_records.hpp); each lane's arithmetic is the
-  // one-particle path's.
   constexpr int R = State::rotational_dofs;
   using P = Pack<W>;
-  constexpr bool packed = [] {
-    if constexpr (W == 1 || R > 1 || (R > 0 && Dim != 2)) {
-      return false;
-    } else if constexpr (R == 0) {
-      return requires(std::array<std::array<P, Dim>, Dim> g, std::array<P, n> sigma) {
-        Continuum::rotate_and_increment_values(g, 0.0, sigma);
-      };
-    } else {
-      return requires(std::array<std::array<P, Dim>, Dim> g, P spin, std::array<P, Dim> grad,
-                      std::array<P, n> sigma) {
-        Continuum::rotate_and_increment_values(g, spin, grad, 0.0, sigma);
-      };
-    }
-  }();
+  constexpr bool packed = rotates_packs<State>;
   // The model's update on the same packs where it has one (material::HasPacksUpdate), for
   // the whole packs; update_batch for the rest.
   constexpr bool packed_model = packed && material::HasPacksUpdate<Model, W>;
@@ -75,17 +102,26 @@ COSMPM_ALWAYS_INLINE void update_stress_run(State& s, Index begin, Index size, d
     for (; packed_end + W <= size; packed_end += W) {
       const Index p = begin + packed_end;
       const auto* const rates = s.particle_rates.data() + p;
-      const auto gradient =
-          load_by_component<W, Dim * Dim>([&](int l) { return rates[l].velocity_gradient.data(); });
+      const PackedRates<State>* const pack_rates =
+          held != nullptr ? held + packed_end / W : nullptr;
       std::array<std::array<P, Dim>, Dim> L;
-      for (int i = 0; i < Dim; ++i) {
-        for (int j = 0; j < Dim; ++j) L[i][j] = gradient[i + Dim * j];
+      if (pack_rates != nullptr) {
+        L = pack_rates->velocity_gradient;
+      } else {
+        const auto gradient = load_by_component<W, Dim * Dim>(
+            [&](int l) { return rates[l].velocity_gradient.data(); });
+        for (int i = 0; i < Dim; ++i) {
+          for (int j = 0; j < Dim; ++j) L[i][j] = gradient[i + Dim * j];
+        }
       }
       const auto stress_record = [&](int l) { return stress[p + l].data(); };
       std::array<P, n> sigma = load_by_component<W, n>(stress_record);
       std::array<P, n> step;
       if constexpr (R == 0) {
         step = Continuum::rotate_and_increment_values(L, dt, sigma);
+      } else if (pack_rates != nullptr) {
+        step = Continuum::rotate_and_increment_values(L, pack_rates->spin[0],
+                                                      pack_rates->spin_gradient[0], dt, sigma);
       } else {
         const P spin = make_pack<W>([&](int l) { return rates[l].spin[0]; });
         const auto spin_gradient =

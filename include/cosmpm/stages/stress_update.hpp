@@ -114,11 +114,14 @@ COSMPM_ALWAYS_INLINE Pack<W> update_stress_packed(
 
 namespace detail {
 // Stage 4a for particles p, ..., p + W - 1 side by side (their stencils and node sums in
-// packs; each lane does the one-particle arithmetic, in its order).
+// packs; each lane does the one-particle arithmetic, in its order). The rates go to
+// s.particle_rates, or, given `held` (W = pack_width), to it as packs for stage 4b in the same
+// pass; the velocity gradient field is written either way.
 template <int W, class State>
 COSMPM_ALWAYS_INLINE void rates_from_grid(State& s, Index p,
                                           const shape::StencilGrid<State::dim>& stencil_grid,
-                                          const double* records) {
+                                          const double* records,
+                                          PackedRates<State>* held = nullptr) {
   constexpr int Dim = State::dim;
   constexpr int size = State::gather_record::with_gradient;
   const auto& half = s.particles.template get<particles::field::HalfWidth<Dim>>();
@@ -135,6 +138,19 @@ COSMPM_ALWAYS_INLINE void rates_from_grid(State& s, Index p,
     for (int j = 0; j < Dim; ++j) gradient[i + Dim * j] = values.gradient[Record::velocity + i][j];
   }
   store_by_component<W, Dim * Dim>([&](int l) { return L[p + l].data(); }, gradient);
+  if constexpr (W == pack_width) {
+    if (held != nullptr) {
+      for (int i = 0; i < Dim; ++i) {
+        for (int j = 0; j < Dim; ++j) held->velocity_gradient[i][j] = gradient[i + Dim * j];
+      }
+      for (int k = 0; k < State::rotational_dofs; ++k) {
+        held->spin[k] = values.value[Record::spin + k];
+        for (int d = 0; d < Dim; ++d)
+          held->spin_gradient[k][d] = values.gradient[Record::spin + k][d];
+      }
+      return;
+    }
+  }
   store_by_component<W, Dim * Dim>(
       [&](int l) { return s.particle_rates[p + l].velocity_gradient.data(); }, gradient);
   for (int l = 0; l < W; ++l) spin_rates_from<State, W>(values, l, s.particle_rates[p + l]);
@@ -175,14 +191,19 @@ const double* rate_records(State& s, const std::vector<Vec<State::dim>>& node_ve
 }
 
 // Stage 4a for particles first, ..., last - 1 on one thread: pack_width at a time from
-// `first`, then the rest one by one.
+// `first`, then the rest one by one. Given `held` (a run's, last - first <= update_run), the
+// whole packs' rates go there, pack k of the range to held[k].
 template <class State>
 COSMPM_ALWAYS_INLINE void rates_of_range(State& s, Index first, Index last,
                                          const shape::StencilGrid<State::dim>& stencil_grid,
-                                         const double* records) {
+                                         const double* records,
+                                         PackedRates<State>* held = nullptr) {
   constexpr int W = pack_width;
   Index p = first;
-  for (; p + W <= last; p += W) rates_from_grid<W>(s, p, stencil_grid, records);
+  for (; p + W <= last; p += W) {
+    rates_from_grid<W>(s, p, stencil_grid, records,
+                       held != nullptr ? held + (p - first) / W : nullptr);
+  }
   for (; p < last; ++p) rates_from_grid<1>(s, p, stencil_grid, records);
 }
 }  // namespace detail
@@ -202,6 +223,7 @@ void velocity_gradient_from_grid(State& s, const std::vector<Vec<State::dim>>& n
   COSMPM_OMP_PARALLEL_FOR(s.threads, count)
   for (Index b = 0; b < packs; ++b) detail::rates_from_grid<W>(s, b * W, stencil_grid, records);
   detail::rates_of_range(s, packs * W, count, stencil_grid, records);
+  s.rates_stored = true;
 }
 
 // Whether the continuum averages the volumetric strain rate over cells (antilocking::FBar).
@@ -261,7 +283,7 @@ void average_volumetric_rate(State& s) {
 namespace detail {
 template <class State>
 void require_rates(const State& s, const char* where) {
-  require(static_cast<Index>(s.particle_rates.size()) == s.particles.size(),
+  require(s.rates_stored && static_cast<Index>(s.particle_rates.size()) == s.particles.size(),
           std::string("Simulation::") + where + ": call velocity_gradient_from_grid first");
 }
 }  // namespace detail
@@ -310,9 +332,12 @@ void update_stress_from_grid(State& s, double dt, const std::vector<Vec<State::d
     for (Index r = 0; r < runs; ++r) {
       const Index begin = r * run;
       const Index size = std::min(run, count - begin);
-      detail::rates_of_range(s, begin, begin + size, stencil_grid, records);
-      detail::update_stress_run(s, begin, size, dt, first_bad);
+      detail::RunRates<State> rates;  // the whole packs' rates, where 4b takes packs
+      detail::PackedRates<State>* const held = rates.empty() ? nullptr : rates.data();
+      detail::rates_of_range(s, begin, begin + size, stencil_grid, records, held);
+      detail::update_stress_run(s, begin, size, dt, first_bad, held);
     }
+    s.rates_stored = false;  // the packs' rates were not stored: update_stress needs 4a again
     if (first_bad < count) {
       throw_unstable_stress<State::dim, typename State::model_type>(s.particles, first_bad,
                                                                     s.clock);
