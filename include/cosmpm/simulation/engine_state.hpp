@@ -79,6 +79,9 @@ struct EngineState {
 
   // Shared by the stages of one step:
   std::vector<double> scatter;  // node records of the particle-to-grid maps
+  // The doubles of `scatter` that may be nonzero, [first, end); every other one is +0: the node
+  // passes that read the records zero them, so the next scatter need not (stages/records.hpp).
+  NodeRange scatter_dirty{0, 0};
   // The fused schemes' particle pass scattered the next step's records (stages/fused_pass.hpp);
   // cleared by anything that writes the records or may have changed the particles since.
   bool prescattered = false;

@@ -38,6 +38,7 @@
 #include "cosmpm/stages/grid_to_particle.hpp"
 #include "cosmpm/stages/node_range.hpp"
 #include "cosmpm/stages/particle_to_grid.hpp"
+#include "cosmpm/stages/records.hpp"
 #include "cosmpm/stages/remap.hpp"
 #include "cosmpm/stages/stress_update.hpp"
 
@@ -152,6 +153,15 @@ NodeRange scattered_nodes(const State& s, const FusedHalfReport& all) {
   return {all.lowest_node, all.highest_node + s.grid.node_index(last_offset) + 1};
 }
 
+// The next step's node range from the report of a scatter of every particle, which wrote the
+// records (C doubles per node, all zeroed before it) only there (stages/records.hpp).
+template <int C, class State>
+NodeRange note_scattered_nodes(State& s, const FusedHalfReport& all) {
+  const NodeRange nodes = scattered_nodes(s, all);
+  records_written_within(s, C * nodes.first, C * nodes.end);
+  return nodes;
+}
+
 // Runs visit(first, last, records, report) over the two halves of the particles, on up to two
 // threads: the first half into `lower` (zeroed, in s.scatter, C doubles per node), the second
 // into s.scatter_upper, left pending for the node pass that reads the records
@@ -226,7 +236,7 @@ void map_to_particles_and_grid(State& s, double dt) {
                      });
   finish_map(s, all.first_outside, all.first_bad, all.first_moved);
   s.prescattered = all.first_outside == count && all.first_invalid == count;
-  s.prescattered_nodes = scattered_nodes(s, all);
+  s.prescattered_nodes = note_scattered_nodes<C>(s, all);
 }
 
 // Fused MUSL: map_to_particles, then each particle's updated momenta back to the grid at the
@@ -300,7 +310,7 @@ void map_to_grid_or_reuse(State& s) {
       typename State::stencil_type st;  // throws, naming the particle's position
       st.compute(stencil_grid, from.x[all.first_invalid], from.half[all.first_invalid]);
     }
-    s.prescattered_nodes = detail::scattered_nodes(s, all);
+    s.prescattered_nodes = detail::note_scattered_nodes<State::scatter_record::all>(s, all);
   }
   // The records were cleared over every node and written within these: the step's node
   // passes skip the rest (its node range set here, as map_to_grid sets it).
@@ -352,7 +362,7 @@ void update_stress_and_map_to_grid(State& s, double dt, const double* velocity_r
                                                                   s.clock);
   }
   s.prescattered = all.first_invalid == count;
-  s.prescattered_nodes = scattered_nodes(s, all);
+  s.prescattered_nodes = note_scattered_nodes<State::scatter_record::all>(s, all);
   if (velocity_records != nullptr) s.rates_stored = false;  // handed over, not stored
 }
 }  // namespace detail

@@ -8,10 +8,13 @@
 
 #include "cosmpm/contact/concept.hpp"
 #include "cosmpm/contact/grid_view.hpp"
+#include "cosmpm/core/pack.hpp"
+#include "cosmpm/core/pack_records.hpp"
 #include "cosmpm/core/parallel.hpp"
 #include "cosmpm/core/types.hpp"
 #include "cosmpm/grid/boundary.hpp"
 #include "cosmpm/particles/fields.hpp"
+#include "cosmpm/stages/node_range.hpp"
 
 namespace cosmpm::stages {
 
@@ -128,57 +131,87 @@ void update_grid(State& s, double dt) {
     const double sign = rate > 0.0 ? 1.0 : (rate < 0.0 ? -1.0 : 0.0);
     return force - damping * std::abs(force) * sign;
   };
-  // The momentum update of node n from its start velocity v_start (its start spin in
-  // spin_momentum, as a rate when spin_is_rate, else as a moment of momentum):
-  // nodes.momentum becomes v_start, nodes.velocity the trial end velocity.
-  const auto update_node = [&](Index n, double inverse_mass, const Vec<Dim>& v_start,
-                               bool spin_is_rate) {
+  // The momentum update of node n from its start velocity v_start: nodes.momentum becomes
+  // v_start, nodes.velocity the trial end velocity.
+  const auto update_node = [&](Index n, double inverse_mass, const Vec<Dim>& v_start) {
     Vec<Dim> force = nodes.force[n];
     if (damping > 0.0) {
       for (int d = 0; d < Dim; ++d) force[d] = damped(force[d], v_start[d]);
     }
     nodes.momentum[n] = v_start;
     nodes.velocity[n] = v_start + (dt * inverse_mass) * force;
-    for (int k = 0; k < R; ++k) {
-      const std::size_t i = static_cast<std::size_t>(n * R + k);
-      const double inertia = nodes.rotational_inertia[i];
-      const double spin_start =
-          spin_is_rate ? nodes.spin_momentum[i] : nodes.spin_momentum[i] / inertia;
-      double moment = nodes.moment[i];
-      if (damping > 0.0) moment = damped(moment, spin_start);
-      nodes.spin_momentum[i] = spin_start;
-      nodes.spin[i] = spin_start + dt * moment / inertia;
+  };
+  // The rotational rates of nodes [first_node, end_node) likewise, from their start spins in
+  // spin_momentum (as rates when spin_is_rate, else as moments of momentum); a node without
+  // mass takes zero rates. A loop of its own, on packs where one dof per node and no damping
+  // let it (the scalar loop's three divisions per node made the Cosserat grid update take 1.8
+  // times the classical one); each lane's arithmetic is the scalar loop's.
+  const auto update_rotations = [&](Index first_node, Index end_node, bool spin_is_rate) {
+    const double* const mass = nodes.mass.data();
+    const double* const inertia = nodes.rotational_inertia.data();
+    const double* const moment = nodes.moment.data();
+    double* const spin_momentum = nodes.spin_momentum.data();
+    double* const spin = nodes.spin.data();
+    Index i = first_node * R;
+    if constexpr (R == 1 && pack_width > 1) {
+      constexpr int W = pack_width;
+      using P = Pack<W>;
+      using cosmpm::detail::load_pack;
+      using cosmpm::detail::store_pack;
+      for (; damping == 0.0 && i + W <= end_node; i += W) {
+        const auto live = load_pack<W>(mass + i) > empty;
+        const P j = live ? load_pack<W>(inertia + i) : P{} + 1.0;
+        const P momentum = load_pack<W>(spin_momentum + i);
+        const P start = spin_is_rate ? momentum : momentum / j;
+        store_pack<W>(spin_momentum + i, live ? start : P{});
+        store_pack<W>(spin + i, live ? start + dt * load_pack<W>(moment + i) / j : P{});
+      }
+    }
+    for (; i < end_node * R; ++i) {
+      if (mass[i / R] <= empty) {
+        spin_momentum[i] = spin[i] = 0.0;
+        continue;
+      }
+      const double spin_start = spin_is_rate ? spin_momentum[i] : spin_momentum[i] / inertia[i];
+      double m = moment[i];
+      if (damping > 0.0) m = damped(m, spin_start);
+      spin_momentum[i] = spin_start;
+      spin[i] = spin_start + dt * m / inertia[i];
     }
   };
   const auto clear_empty_node = [&](Index n) {
     nodes.momentum[n].setZero();
     nodes.velocity[n].setZero();
-    for (int k = 0; k < R; ++k) nodes.spin_momentum[n * R + k] = nodes.spin[n * R + k] = 0.0;
   };
   if (contact::corrects_start_of_step(s.contact)) {
     // Nairn, Hammerquist and Smith (2020): contact corrects the start velocity as well, so
     // the trial velocity, and the impulse recorded at the end, start from a field that does
     // not penetrate. The correction is not an acceleration: FLIP particles do not receive it.
     grid_velocity_from_momentum(s, dt);
-    COSMPM_OMP_PARALLEL_FOR(s.threads, end - first)
-    for (Index n = first; n < end; ++n) {
-      if (nodes.mass[n] <= empty) {
-        clear_empty_node(n);
-        continue;
+    COSMPM_OMP_PARALLEL(s.threads, end - first) {
+      const Share share = node_share(s.node_range);
+      for (Index n = share.first; n < share.last; ++n) {
+        if (nodes.mass[n] <= empty) {
+          clear_empty_node(n);
+          continue;
+        }
+        update_node(n, 1.0 / nodes.mass[n], Vec<Dim>(nodes.momentum[n]));
       }
-      update_node(n, 1.0 / nodes.mass[n], Vec<Dim>(nodes.momentum[n]), /*spin_is_rate=*/true);
+      if constexpr (R > 0) update_rotations(share.first, share.last, /*spin_is_rate=*/true);
     }
   } else {
-    COSMPM_OMP_PARALLEL_FOR(s.threads, end - first)
-    for (Index n = first; n < end; ++n) {
-      const double m = nodes.mass[n];
-      if (m <= empty) {
-        clear_empty_node(n);
-        continue;
+    COSMPM_OMP_PARALLEL(s.threads, end - first) {
+      const Share share = node_share(s.node_range);
+      for (Index n = share.first; n < share.last; ++n) {
+        const double m = nodes.mass[n];
+        if (m <= empty) {
+          clear_empty_node(n);
+          continue;
+        }
+        const double inverse_mass = 1.0 / m;  // one division per node instead of 2 Dim
+        update_node(n, inverse_mass, Vec<Dim>(nodes.momentum[n] * inverse_mass));
       }
-      const double inverse_mass = 1.0 / m;  // one division per node instead of 2 Dim
-      update_node(n, inverse_mass, Vec<Dim>(nodes.momentum[n] * inverse_mass),
-                  /*spin_is_rate=*/false);
+      if constexpr (R > 0) update_rotations(share.first, share.last, /*spin_is_rate=*/false);
     }
   }
   // Contact corrects the updated velocity, so the acceleration (and through FLIP the

@@ -21,6 +21,7 @@
 #include "cosmpm/simulation/block_scheduler.hpp"
 #include "cosmpm/stages/grid_update.hpp"
 #include "cosmpm/stages/node_range.hpp"
+#include "cosmpm/stages/records.hpp"
 #include "cosmpm/transfer/apic.hpp"
 
 namespace cosmpm::stages {
@@ -235,7 +236,7 @@ double* clear_scatter_records(State& s, NodeRange cleared) {
   const Index nodes = s.grid.node_count();
   discard_pending_upper(s);
   s.scatter.resize(static_cast<std::size_t>(Record::all * nodes));
-  std::fill(s.scatter.begin() + C * cleared.first, s.scatter.begin() + C * cleared.end, 0.0);
+  zero_records_for_writing(s, C * cleared.first, C * cleared.end);
   s.prescattered = false;
   return s.scatter.data();
 }
@@ -317,8 +318,10 @@ void nodes_from_records(State& s, bool with_forces) {
         nodes.spin_momentum[n * R + k] = record[Record::spin_momentum + k];
         if (with_forces) nodes.moment[n * R + k] = record[Record::moment + k];
       }
+      std::fill(scattered + n * size, scattered + (n + 1) * size, 0.0);  // stages/records.hpp
     }
   }
+  detail::records_read_and_zeroed(s, range.first * size, range.end * size);
 }
 
 // Particle mass and momentum (and, with_forces, internal and external forces) to the nodes.
@@ -360,7 +363,7 @@ void map_forces_to_grid(State& s) {
   s.scatter.resize(std::max(s.scatter.size(), static_cast<std::size_t>(forces * count)));
   s.prescattered = false;
   detail::discard_pending_upper(s);
-  std::fill(s.scatter.begin() + forces * range.first, s.scatter.begin() + forces * range.end, 0.0);
+  detail::zero_records_for_writing(s, forces * range.first, forces * range.end);
   require_start_stencils(s, "map_forces_to_grid");
   const auto& mass = s.particles.template get<particles::field::Mass>();
   const auto& vol = s.particles.template get<particles::field::Volume>();
@@ -379,7 +382,9 @@ void map_forces_to_grid(State& s) {
   for (Index n = range.first; n < range.end; ++n) {
     for (int d = 0; d < Dim; ++d) nodes.force[n][d] = records[n * forces + d];
     for (int k = 0; k < R; ++k) nodes.moment[n * R + k] = records[n * forces + Dim + k];
+    std::fill(records + n * forces, records + (n + 1) * forces, 0.0);
   }
+  detail::records_read_and_zeroed(s, forces * range.first, forces * range.end);
 }
 
 }  // namespace cosmpm::stages

@@ -16,6 +16,7 @@
 #include "cosmpm/stages/grid_update.hpp"
 #include "cosmpm/stages/node_range.hpp"
 #include "cosmpm/stages/particle_to_grid.hpp"
+#include "cosmpm/stages/records.hpp"
 
 namespace cosmpm::stages {
 
@@ -57,8 +58,7 @@ double* clear_remap_records(State& s) {
   s.prescattered = false;
   discard_pending_upper(s);
   constexpr Index width = remap_components<State>;
-  std::fill(s.scatter.begin() + width * s.node_range.first,
-            s.scatter.begin() + width * s.node_range.end, 0.0);
+  zero_records_for_writing(s, width * s.node_range.first, width * s.node_range.end);
   return s.scatter.data();
 }
 
@@ -77,18 +77,20 @@ void velocities_from_remap(State& s, double* records, double dt) {
     const Share share = node_share(range);  // the node loops' static shares
     add_pending_upper(pending, records, share.first, share.last);
     for (Index n = share.first; n < share.last; ++n) {
-      const double* const record = records + n * C;
+      double* const record = records + n * C;
       if (nodes.mass[n] <= empty) {
         nodes.velocity[n].setZero();
         for (int k = 0; k < R; ++k) nodes.spin[n * R + k] = 0.0;
-        continue;
+      } else {
+        nodes.velocity[n] = nodal_momentum(s, n, record, record + Dim + R) / nodes.mass[n];
+        for (int k = 0; k < R; ++k) {
+          nodes.spin[n * R + k] = record[Dim + k] / nodes.rotational_inertia[n * R + k];
+        }
       }
-      nodes.velocity[n] = nodal_momentum(s, n, record, record + Dim + R) / nodes.mass[n];
-      for (int k = 0; k < R; ++k) {
-        nodes.spin[n * R + k] = record[Dim + k] / nodes.rotational_inertia[n * R + k];
-      }
+      std::fill(record, record + C, 0.0);  // for the next writer (stages/records.hpp)
     }
   }
+  records_read_and_zeroed(s, range.first * C, range.end * C);
   correct_and_apply_conditions(s, nodes.velocity, nodes.spin, dt,
                                contact::Phase::remapped_velocity);
 }
