@@ -14,7 +14,7 @@
 #include "cosmpm/continuum/cosserat.hpp"
 #include "cosmpm/material/cosserat_elastic.hpp"
 #include "cosmpm/material/mohr_coulomb.hpp"
-#include "verification_helpers.hpp"
+#include "sliding_block.hpp"
 
 namespace {
 using namespace cosmpm;
@@ -60,13 +60,7 @@ Sim thrown_up(int threads, bool prune, bool wide) {
   return sim;
 }
 
-template <class T>
-bool same_bits(const std::vector<T>& a, const std::vector<T>& b) {
-  // memcmp takes no null pointer, which an empty vector may hold (a classical continuum's
-  // rotational fields).
-  return a.size() == b.size() &&
-         (a.empty() || std::memcmp(a.data(), b.data(), a.size() * sizeof(T)) == 0);
-}
+using test::same_bits;
 
 // Particles and every node field, bit for bit.
 template <class Sim>

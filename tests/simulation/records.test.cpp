@@ -6,56 +6,23 @@
 #include <doctest/doctest.h>
 
 #include <cmath>
-#include <cstring>
 #include <string>
 #include <utility>
 #include <vector>
 
-#include "cosmpm/continuum/cosserat.hpp"
-#include "cosmpm/material/cosserat_drucker_prager.hpp"
-#include "cosmpm/material/mohr_coulomb.hpp"
 #include "cosmpm/stages/records.hpp"
-#include "verification_helpers.hpp"
+#include "sliding_block.hpp"
 
 namespace {
 using namespace cosmpm;
-using Soil = material::MohrCoulomb<>;
-using Polar = continuum::Cosserat<material::CosseratDruckerPrager<>>;
+using test::same_bits;
+using test::Soil;
+using Polar = test::PolarContinuum;
 
 struct Buffer {
   std::vector<double> scatter = std::vector<double>(40, 0.0);
   NodeRange scatter_dirty{0, 0};
 };
-
-template <class Continuum>
-Continuum make_continuum() {
-  if constexpr (std::is_same_v<Continuum, Polar>) {
-    return Polar(material::CosseratDruckerPrager<>(2.76e6, 0.2, 2.3e6, 0.01, 26.0, 2.0),
-                 {.micro_inertia = 12.5e-6});
-  } else {
-    return Continuum(Soil({.youngs_modulus = 2.76e6,
-                           .poisson_ratio = 0.2,
-                           .friction_angle_deg = 26.0,
-                           .dilatancy_angle_deg = 2.0}));
-  }
-}
-
-// A block of 2 x 2 particles per cell sliding at 0.5 m/s over a fixed floor.
-template <class Sim>
-Sim sliding_block() {
-  const grid::Grid<2> grid(Vec<2>(0.0, 0.0), Vec<2>(0.4, 0.2), {40, 20});
-  SimulationParameters<2> parameters;
-  parameters.gravity = Vec<2>(0.0, -9.81);
-  Sim sim(grid, make_continuum<typename Sim::continuum_type>(), parameters);
-  const auto seeding = particles::seed_box(grid, Vec<2>(0.05, 0.0), Vec<2>(0.25, 0.06), 2);
-  sim.add_particles(seeding.positions, seeding.volume, 1500.0, seeding.half_width);
-  for (auto& v : sim.particles().template get<particles::field::Velocity<2>>()) {
-    v = Vec<2>(0.5, 0.0);
-  }
-  sim.boundary_conditions().set(grid::BoundaryConditions<2>::face(1, false),
-                                grid::BoundaryKind::fixed);
-  return sim;
-}
 
 // Every double of the records outside the dirty extent is +0 (not -0: a sum starting there
 // must start from +0).
@@ -71,19 +38,13 @@ bool zero_outside_extent(const Sim& sim) {
   return true;
 }
 
-template <class T>
-bool same_bits(const std::vector<T>& a, const std::vector<T>& b) {
-  return a.size() == b.size() &&
-         (a.empty() || std::memcmp(a.data(), b.data(), a.size() * sizeof(T)) == 0);
-}
-
 // Each step's stages one by one (MUSL's, with USF's force map and the fused schemes' passes in
 // between), the invariant checked after each.
 template <class Continuum>
 void check_invariant_through_stages(const std::string& label) {
   INFO(label);
   using Sim = Simulation<2, shape::Linear, Continuum, contact::SingleField, integrator::MUSL>;
-  Sim sim = sliding_block<Sim>();
+  Sim sim = test::sliding_block<Sim>(1, false);
   const double dt = sim.time_step();
   const auto check = [&](const char* stage) {
     INFO(stage);
@@ -163,8 +124,8 @@ TEST_CASE("node records: stages in any order give what clearing every record giv
   // a fused pass's records dropped unread, an unfused scatter while a fused pass's records are
   // pending (it clears only its own range), the remap twice, the schemes mixed.
   using Sim = Simulation<2, shape::Linear, Polar, contact::SingleField, integrator::MUSL>;
-  Sim kept = sliding_block<Sim>();
-  Sim cleared = sliding_block<Sim>();
+  Sim kept = test::sliding_block<Sim>(1, false);
+  Sim cleared = test::sliding_block<Sim>(1, false);
   const double dt = kept.time_step();
   const auto run = [&](auto&& stage, const char* name) {
     INFO(name);

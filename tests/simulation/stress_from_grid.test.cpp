@@ -4,22 +4,19 @@
 // for bit, every particle field and every node field, step after step.
 #include <doctest/doctest.h>
 
-#include <cstring>
 #include <string>
 #include <type_traits>
 #include <utility>
 #include <vector>
 
-#include "cosmpm/continuum/cosserat.hpp"
-#include "cosmpm/material/cosserat_drucker_prager.hpp"
-#include "cosmpm/material/mohr_coulomb.hpp"
-#include "verification_helpers.hpp"
+#include "sliding_block.hpp"
 
 namespace {
 using namespace cosmpm;
-using Soil = material::MohrCoulomb<>;
-using PolarSoil = material::CosseratDruckerPrager<>;
-using Polar = continuum::Cosserat<PolarSoil>;
+using test::same_bits;
+using test::sliding_block;
+using test::Soil;
+using Polar = test::PolarContinuum;
 
 // MUSL and USF with stages 4a and 4b called apart, as before update_stress_from_grid.
 struct MUSLApart {
@@ -47,49 +44,6 @@ struct USFApart {
     sim.map_to_particles(dt);
   }
 };
-
-template <class Continuum>
-Continuum make_continuum() {
-  // The benchmark's soils (benchmarks/simulation/step_support.hpp): corn, and the paper's
-  // Cosserat parameters (Gc, l = 10 mm, micro-inertia 12.5e-6 m^2).
-  if constexpr (std::is_same_v<Continuum, Polar>) {
-    return Polar(PolarSoil(2.76e6, 0.2, 2.3e6, 0.01, 26.0, 2.0), {.micro_inertia = 12.5e-6});
-  } else {
-    return Continuum(Soil({.youngs_modulus = 2.76e6,
-                           .poisson_ratio = 0.2,
-                           .friction_angle_deg = 26.0,
-                           .dilatancy_angle_deg = 2.0}));
-  }
-}
-
-// A block of 2 x 2 particles per cell sliding at 0.5 m/s over a fixed floor, which shears its
-// base into plastic flow. `wide`: 6,200 particles, above cosmpm::parallel_threshold, so the
-// pass runs on two threads.
-template <class Sim>
-Sim sliding_block(int threads, bool wide) {
-  const double length = wide ? 2.0 : 0.4;
-  const grid::Grid<2> grid(Vec<2>(0.0, 0.0), Vec<2>(length, 0.12), {wide ? 200 : 40, 12});
-  SimulationParameters<2> parameters;
-  parameters.gravity = Vec<2>(0.0, -9.81);
-  parameters.threads = threads;
-  Sim sim(grid, make_continuum<typename Sim::continuum_type>(), parameters);
-  const auto seeding =
-      particles::seed_box(grid, Vec<2>(0.05, 0.0), Vec<2>(wide ? 1.6 : 0.25, wide ? 0.1 : 0.06), 2);
-  sim.add_particles(seeding.positions, seeding.volume, 1500.0, seeding.half_width);
-  for (auto& v : sim.particles().template get<particles::field::Velocity<2>>()) {
-    v = Vec<2>(0.5, 0.0);
-  }
-  sim.boundary_conditions().set(grid::BoundaryConditions<2>::face(1, false),
-                                grid::BoundaryKind::fixed);
-  return sim;
-}
-
-template <class T>
-bool same_bits(const std::vector<T>& a, const std::vector<T>& b) {
-  // memcmp takes no null pointer, which an empty vector may hold.
-  return a.size() == b.size() &&
-         (a.empty() || std::memcmp(a.data(), b.data(), a.size() * sizeof(T)) == 0);
-}
 
 template <class A, class B>
 void check_same(const A& a, const B& b) {
