@@ -346,14 +346,8 @@ void update_stress_and_map_to_grid(State& s, double dt, const double* velocity_r
       [&](Index first, Index last, double* records, FusedHalfReport& r) {
         for (Index begin = first; begin < last; begin += update_run) {
           const Index end = std::min(begin + update_run, last);
-          // Before the scatter moves the run's stencils to the new positions; the whole packs'
-          // rates handed over as packs where 4b takes them.
-          RunRates<State> rates;
-          PackedRates<State>* const held =
-              velocity_records != nullptr && !rates.empty() ? rates.data() : nullptr;
-          if (velocity_records != nullptr)
-            rates_of_range(s, begin, end, stencil_grid, velocity_records, held);
-          update_stress_run(s, begin, end - begin, dt, r.first_bad, held);
+          // Before the scatter moves the run's stencils to the new positions.
+          update_stress_of_run(s, begin, end, dt, stencil_grid, velocity_records, r.first_bad);
           scatter_next_range(s, from, begin, end, stencil_grid, records, r);
         }
       });

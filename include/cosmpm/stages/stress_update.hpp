@@ -206,6 +206,18 @@ COSMPM_ALWAYS_INLINE void rates_of_range(State& s, Index first, Index last,
   }
   for (; p < last; ++p) rates_from_grid<1>(s, p, stencil_grid, records);
 }
+
+// Stages 4a (from `records`; none: the rates are in s.particle_rates already) and 4b for the
+// run of particles [begin, end), its whole packs' rates handed over as packs where 4b takes them.
+template <class State>
+COSMPM_ALWAYS_INLINE void update_stress_of_run(State& s, Index begin, Index end, double dt,
+                                               const shape::StencilGrid<State::dim>& stencil_grid,
+                                               const double* records, Index& first_bad) {
+  RunRates<State> rates;
+  PackedRates<State>* const held = records != nullptr && !rates.empty() ? rates.data() : nullptr;
+  if (records != nullptr) rates_of_range(s, begin, end, stencil_grid, records, held);
+  update_stress_run(s, begin, end - begin, dt, first_bad, held);
+}
 }  // namespace detail
 
 // Stage 4a: particle rates from a nodal velocity field (and the rotational rates, ignored by a
@@ -331,11 +343,8 @@ void update_stress_from_grid(State& s, double dt, const std::vector<Vec<State::d
     COSMPM_OMP_PARALLEL_FOR_MIN(s.threads, count, first_bad)
     for (Index r = 0; r < runs; ++r) {
       const Index begin = r * run;
-      const Index size = std::min(run, count - begin);
-      detail::RunRates<State> rates;  // the whole packs' rates, where 4b takes packs
-      detail::PackedRates<State>* const held = rates.empty() ? nullptr : rates.data();
-      detail::rates_of_range(s, begin, begin + size, stencil_grid, records, held);
-      detail::update_stress_run(s, begin, size, dt, first_bad, held);
+      detail::update_stress_of_run(s, begin, std::min(begin + run, count), dt, stencil_grid,
+                                   records, first_bad);
     }
     s.rates_stored = false;  // the packs' rates were not stored: update_stress needs 4a again
     if (first_bad < count) {
