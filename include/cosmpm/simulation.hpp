@@ -173,6 +173,8 @@ class Simulation : detail::CompositionChecks<Dim, Kernel, Continuum, Contact, Sc
   void grid_velocity_from_momentum(double dt) { stages::grid_velocity_from_momentum(state_, dt); }
   // Momentum update, damping, contact and boundary conditions.
   void update_grid(double dt) { stages::update_grid(state_, dt); }
+  // map_to_grid(true) then update_grid(dt), the same results with one node pass less.
+  void map_and_update_grid(double dt) { stages::map_and_update_grid(state_, dt); }
   // Particle velocity and position (FLIP/PIC) from the grid; with_stress_update, also the
   // velocity gradient, deformation and stress at the same stencil (USL).
   void map_to_particles(double dt, bool with_stress_update = false) {
@@ -195,6 +197,8 @@ class Simulation : detail::CompositionChecks<Dim, Kernel, Continuum, Contact, Sc
   // Fused schemes (integrator/fused.hpp): as map_to_grid(true), in the fused pass's order, or
   // the node fields from the records the last step's fused pass scattered while they are valid.
   void map_to_grid_or_reuse() { stages::map_to_grid_or_reuse(state_); }
+  // map_to_grid_or_reuse() then update_grid(dt), one node pass less (as map_and_update_grid).
+  void map_or_reuse_and_update_grid(double dt) { stages::map_or_reuse_and_update_grid(state_, dt); }
   // Fused USL: map_to_particles(dt, true) and the next step's map_to_grid in one pass.
   void map_to_particles_and_grid(double dt) { stages::map_to_particles_and_grid(state_, dt); }
   // Fused MUSL: map_to_particles(dt) and remap_momentum(dt) in one pass.

@@ -71,6 +71,16 @@ void check_invariant_through_stages(const std::string& label) {
     sim.map_to_grid_or_reuse();
     check("map_to_grid_or_reuse after the fused pass");
     CHECK(std::as_const(sim).engine().scatter_dirty.size() == 0);
+    sim.update_grid(dt);
+    sim.map_to_particles_and_grid(dt);
+    sim.map_or_reuse_and_update_grid(dt);
+    check("map_or_reuse_and_update_grid after the fused pass");
+    CHECK(std::as_const(sim).engine().scatter_dirty.size() == 0);
+    sim.map_to_particles(dt);
+    sim.map_and_update_grid(dt);
+    check("map_and_update_grid");
+    CHECK(std::as_const(sim).engine().scatter_dirty.size() == 0);
+    sim.map_to_particles(dt, /*with_stress_update=*/true);
     sim.handle_stray_particles();
   }
 }
@@ -167,6 +177,10 @@ TEST_CASE("node records: stages in any order give what clearing every record giv
         "USF stress");
     run([&](Sim& s) { s.map_forces_to_grid(); }, "map_forces_to_grid");
     run([&](Sim& s) { s.update_grid(dt); }, "update_grid");
+    run([&](Sim& s) { s.map_to_particles(dt); }, "map_to_particles");
+    run([&](Sim& s) { s.map_and_update_grid(dt); }, "map_and_update_grid");
+    run([&](Sim& s) { s.map_to_particles_and_grid(dt); }, "fused USL pass");
+    run([&](Sim& s) { s.map_or_reuse_and_update_grid(dt); }, "its records in the grid update");
     run([&](Sim& s) { s.map_to_particles(dt); }, "map_to_particles");
     run([&](Sim& s) { s.handle_stray_particles(); }, "strays");
   }

@@ -18,8 +18,7 @@ struct FusedUSL {
   static constexpr const char* name() { return "fused USL"; }
   template <class Sim>
   static void step(Sim& sim, double dt) {
-    sim.map_to_grid_or_reuse();
-    sim.update_grid(dt);
+    sim.map_or_reuse_and_update_grid(dt);  // map_to_grid_or_reuse(), update_grid(dt)
     sim.map_to_particles_and_grid(dt);
   }
 };
@@ -28,8 +27,7 @@ struct FusedMUSL {
   static constexpr const char* name() { return "fused MUSL"; }
   template <class Sim>
   static void step(Sim& sim, double dt) {
-    sim.map_to_grid_or_reuse();
-    sim.update_grid(dt);
+    sim.map_or_reuse_and_update_grid(dt);  // map_to_grid_or_reuse(), update_grid(dt)
     sim.map_to_particles_and_remap(dt);
     sim.update_stress_and_map_to_grid(dt, sim.nodes().velocity, sim.nodes().spin);
   }

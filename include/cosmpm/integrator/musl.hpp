@@ -10,8 +10,7 @@ struct MUSL {
   static constexpr const char* name() { return "MUSL"; }
   template <class Sim>
   static void step(Sim& sim, double dt) {
-    sim.map_to_grid(/*with_forces=*/true);
-    sim.update_grid(dt);
+    sim.map_and_update_grid(dt);  // map_to_grid(true), update_grid(dt)
     sim.map_to_particles(dt);
     sim.remap_momentum(dt);
     sim.update_stress_from_grid(dt, sim.nodes().velocity, sim.nodes().spin);

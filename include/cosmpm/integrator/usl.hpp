@@ -11,8 +11,7 @@ struct USL {
   static constexpr const char* name() { return "USL"; }
   template <class Sim>
   static void step(Sim& sim, double dt) {
-    sim.map_to_grid(/*with_forces=*/true);
-    sim.update_grid(dt);
+    sim.map_and_update_grid(dt);  // map_to_grid(true), update_grid(dt)
     sim.map_to_particles(dt, /*with_stress_update=*/true);
   }
 };

@@ -36,6 +36,7 @@
 #include "cosmpm/shape/stencil_grid.hpp"
 #include "cosmpm/simulation/diagnostics.hpp"
 #include "cosmpm/stages/grid_to_particle.hpp"
+#include "cosmpm/stages/grid_update.hpp"
 #include "cosmpm/stages/node_range.hpp"
 #include "cosmpm/stages/particle_to_grid.hpp"
 #include "cosmpm/stages/records.hpp"
@@ -284,14 +285,10 @@ void map_to_particles_and_remap(State& s, double dt) {
       s, [&]<VelocityUpdate update>() { detail::map_to_particles_and_remap<update>(s, dt); });
 }
 
-// Fused schemes, first stage: the node fields from the records the last step's fused pass
-// scattered, when they are still valid; otherwise the particles are scattered afresh, in the
-// fused pass's order (index order, two halves), so a fused run's results do not depend on
-// when its records were dropped (a restart, a user's change between steps). Either way the
-// particles are sorted into their blocks, for any coloured stage a user's scheme calls next
-// (the fused schemes themselves have none).
+namespace detail {
+// map_to_grid_or_reuse's records, the node fields not yet taken.
 template <class State>
-void map_to_grid_or_reuse(State& s) {
+void reuse_or_scatter_records(State& s) {
   constexpr int Dim = State::dim;
   const Index count = s.particles.size();
   const shape::StencilGrid<Dim> stencil_grid(s.grid);
@@ -316,7 +313,27 @@ void map_to_grid_or_reuse(State& s) {
   // passes skip the rest (its node range set here, as map_to_grid sets it).
   set_node_range(s, s.prescattered_nodes);
   s.prescattered = false;
+}
+}  // namespace detail
+
+// Fused schemes, first stage: the node fields from the records the last step's fused pass
+// scattered, when they are still valid; otherwise the particles are scattered afresh, in the
+// fused pass's order (index order, two halves), so a fused run's results do not depend on
+// when its records were dropped (a restart, a user's change between steps). Either way the
+// particles are sorted into their blocks, for any coloured stage a user's scheme calls next
+// (the fused schemes themselves have none).
+template <class State>
+void map_to_grid_or_reuse(State& s) {
+  detail::reuse_or_scatter_records(s);
   nodes_from_records(s, /*with_forces=*/true);
+}
+
+// map_to_grid_or_reuse(s), then update_grid(s, dt), the node fields taken in the grid
+// update's node pass (as map_and_update_grid).
+template <class State>
+void map_or_reuse_and_update_grid(State& s, double dt) {
+  detail::reuse_or_scatter_records(s);
+  detail::update_grid_from_records(s, dt);
 }
 
 // Fused USL: map_to_particles(dt, with_stress_update = true), and the particle-to-grid map of

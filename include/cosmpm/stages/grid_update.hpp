@@ -15,6 +15,8 @@
 #include "cosmpm/grid/boundary.hpp"
 #include "cosmpm/particles/fields.hpp"
 #include "cosmpm/stages/node_range.hpp"
+#include "cosmpm/stages/particle_to_grid.hpp"
+#include "cosmpm/stages/records.hpp"
 
 namespace cosmpm::stages {
 
@@ -100,11 +102,13 @@ void grid_velocity_from_momentum(State& s, double dt) {
                                contact::Phase::start_velocity);
 }
 
-// The grid update proper. Afterwards nodes.momentum holds the start velocity v^t,
-// nodes.velocity the end velocity v^{t+dt} and nodes.acceleration (v^{t+dt} - v^t) / dt; the
-// gather records of the grid-to-particle map are filled.
-template <class State>
-void update_grid(State& s, double dt) {
+namespace detail {
+
+// update_grid; from_records: the node fields first taken from the particle-to-grid records
+// (nodes_from_records) in the same node pass, where contact neither adds forces nor corrects
+// the start velocity (map_and_update_grid checks).
+template <bool from_records, class State>
+void update_grid_pass(State& s, double dt) {
   constexpr int Dim = State::dim;
   constexpr int R = State::rotational_dofs;
   using Record = typename State::gather_record;
@@ -200,9 +204,15 @@ void update_grid(State& s, double dt) {
       if constexpr (R > 0) update_rotations(share.first, share.last, /*spin_is_rate=*/true);
     }
   } else {
+    constexpr Index size = State::scatter_record::all;
+    double* const scattered = s.scatter.data();
+    const PendingUpper pending = from_records ? take_pending_upper(s, size) : PendingUpper{};
     COSMPM_OMP_PARALLEL(s.threads, end - first) {
       const Share share = node_share(s.node_range);
+      if constexpr (from_records) add_pending_upper(pending, scattered, share.first, share.last);
       for (Index n = share.first; n < share.last; ++n) {
+        // The fields written here are read back at once, from the cache: one node pass less.
+        if constexpr (from_records) node_from_record<true>(s, n, scattered + n * size);
         const double m = nodes.mass[n];
         if (m <= empty) {
           clear_empty_node(n);
@@ -213,6 +223,7 @@ void update_grid(State& s, double dt) {
       }
       if constexpr (R > 0) update_rotations(share.first, share.last, /*spin_is_rate=*/false);
     }
+    if constexpr (from_records) records_read_and_zeroed(s, first * size, end * size);
   }
   // Contact corrects the updated velocity, so the acceleration (and through FLIP the
   // particles) carries the step's impulse; boundary conditions come last and win.
@@ -237,6 +248,44 @@ void update_grid(State& s, double dt) {
       record[Record::spin_acceleration + k] = nodes.spin_acceleration[i];
     }
   }
+}
+
+}  // namespace detail
+
+// The grid update proper. Afterwards nodes.momentum holds the start velocity v^t,
+// nodes.velocity the end velocity v^{t+dt} and nodes.acceleration (v^{t+dt} - v^t) / dt; the
+// gather records of the grid-to-particle map are filled.
+template <class State>
+void update_grid(State& s, double dt) {
+  detail::update_grid_pass</*from_records=*/false>(s, dt);
+}
+
+namespace detail {
+
+// update_grid after a particle-to-grid pass with forces left its sums in the records: the node
+// fields taken from them in the grid update's own node pass, or first in a pass of their own
+// where contact needs every node's fields before the update (added forces, a corrected start
+// velocity).
+template <class State>
+void update_grid_from_records(State& s, double dt) {
+  constexpr bool adds_forces = contact::AddsForces<decltype(s.contact), State::dim>;
+  if (adds_forces || contact::corrects_start_of_step(s.contact)) {
+    nodes_from_records(s, /*with_forces=*/true);
+    update_grid_pass</*from_records=*/false>(s, dt);
+  } else {
+    update_grid_pass</*from_records=*/true>(s, dt);
+  }
+}
+
+}  // namespace detail
+
+// map_to_grid(s, true), then update_grid(s, dt), with the same results; the node fields are
+// taken from the particle-to-grid records in the grid update's node pass, one node pass less
+// (docs/performance.md, "The node fields in the grid update").
+template <class State>
+void map_and_update_grid(State& s, double dt) {
+  detail::scatter_to_records(s, /*with_forces=*/true);
+  detail::update_grid_from_records(s, dt);
 }
 
 }  // namespace cosmpm::stages

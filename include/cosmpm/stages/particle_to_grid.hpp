@@ -19,7 +19,6 @@
 #include "cosmpm/shape/stencil_grid.hpp"
 #include "cosmpm/shape/transfer.hpp"
 #include "cosmpm/simulation/block_scheduler.hpp"
-#include "cosmpm/stages/grid_update.hpp"
 #include "cosmpm/stages/node_range.hpp"
 #include "cosmpm/stages/records.hpp"
 #include "cosmpm/transfer/apic.hpp"
@@ -180,52 +179,6 @@ COSMPM_ALWAYS_INLINE void scatter_particle(const typename State::store_type& par
   shape::scatter<W>(st, records, weighted, by_gradient);
 }
 
-// The fused pass's second-half records not yet added (stages/fused_pass.hpp, over_halves):
-// the node pass that reads the records adds them, in its own thread's nodes, so no thread
-// adds them all alone between the passes.
-struct PendingUpper {
-  double* upper = nullptr;
-  Index first = 0;
-  Index end = 0;
-  Index width = 0;
-};
-
-// Takes the pending second-half records for a node pass over records of `width` doubles.
-template <class State>
-PendingUpper take_pending_upper(State& s, Index width) {
-  const PendingUpper pending{s.scatter_upper.data(), s.upper_first, s.upper_end, width};
-  if (pending.end > pending.first) {
-    require(s.upper_width == width, "a node pass read " + std::to_string(width) +
-                                        " doubles per node where the fused pass wrote " +
-                                        std::to_string(s.upper_width));
-  }
-  s.upper_first = s.upper_end = 0;
-  return pending;
-}
-
-// The records of the nodes [first, last) completed: their second-half terms added to their
-// first half's, in that order, and zeroed for the next pass.
-inline void add_pending_upper(const PendingUpper& pending, double* records, Index first,
-                              Index last) {
-  first = std::max(first, pending.first);
-  last = std::min(last, pending.end);
-  double* const upper = pending.upper;
-  for (Index i = first * pending.width; i < last * pending.width; ++i) {
-    records[i] += upper[i];
-    upper[i] = 0.0;
-  }
-}
-
-// Drops pending second-half records: whatever clears the records starts afresh.
-template <class State>
-void discard_pending_upper(State& s) {
-  if (s.upper_end > s.upper_first) {
-    const auto at = [&](Index n) { return s.scatter_upper.begin() + n * s.upper_width; };
-    std::fill(at(s.upper_first), at(s.upper_end), 0.0);
-  }
-  s.upper_first = s.upper_end = 0;
-}
-
 // The node records of the particle-to-grid map, sized for the grid, zeroed in `cleared` (the
 // step's node range, which no stencil leaves; every node for a scatter at positions not yet
 // sorted into blocks).
@@ -282,12 +235,52 @@ bool scatter_particles(State& s) {
 
 }  // namespace detail
 
+namespace detail {
+
+// Node n's fields from its record of the particle-to-grid map (mass, momentum and, with
+// forces, force and moments), and the record zeroed for the next writer (stages/records.hpp).
+template <bool with_forces, class State>
+COSMPM_ALWAYS_INLINE void node_from_record(State& s, Index n, double* record) {
+  constexpr int Dim = State::dim;
+  constexpr int R = State::rotational_dofs;
+  using Record = typename State::scatter_record;
+  constexpr int C = with_forces ? Record::all : Record::weighted;
+  // Read into registers and zeroed first: the node fields' stores could alias the record.
+  const double mass = record[Record::mass];
+  Vec<Dim> momentum, force = Vec<Dim>::Zero();
+  if constexpr (State::transfer_type::affine) {
+    momentum = nodal_momentum(s, n, record + Record::momentum, record + Record::affine);
+  } else {
+    for (int d = 0; d < Dim; ++d) momentum[d] = record[Record::momentum + d];
+  }
+  if constexpr (with_forces) {
+    for (int d = 0; d < Dim; ++d) force[d] = record[Record::force + d];
+  }
+  std::array<double, R> inertia, spin_momentum, moment{};
+  for (int k = 0; k < R; ++k) {
+    inertia[k] = record[Record::inertia + k];
+    spin_momentum[k] = record[Record::spin_momentum + k];
+    if constexpr (with_forces) moment[k] = record[Record::moment + k];
+  }
+  // A constant count: a count known at run time took a call per node (USL's step +4 %).
+  std::fill(record, record + C, 0.0);
+  auto& nodes = s.nodes;
+  nodes.mass[n] = mass;
+  nodes.momentum[n] = momentum;
+  if constexpr (with_forces) nodes.force[n] = force;
+  for (int k = 0; k < R; ++k) {
+    nodes.rotational_inertia[n * R + k] = inertia[k];
+    nodes.spin_momentum[n * R + k] = spin_momentum[k];
+    if constexpr (with_forces) nodes.moment[n * R + k] = moment[k];
+  }
+}
+
+}  // namespace detail
+
 // The node fields from the records of the particle-to-grid map (mass, momentum and, with
 // forces, force and moments).
 template <class State>
 void nodes_from_records(State& s, bool with_forces) {
-  constexpr int Dim = State::dim;
-  constexpr int R = State::rotational_dofs;
   using Record = typename State::scatter_record;
   // A grid distributed over several processes would sum the records of the nodes its
   // neighbours share here (halo exchange), before any node pass reads them.
@@ -295,52 +288,33 @@ void nodes_from_records(State& s, bool with_forces) {
   const Index size = with_forces ? Record::all : Record::weighted;  // per node
   double* const scattered = s.scatter.data();
   const detail::PendingUpper pending = detail::take_pending_upper(s, size);
-  auto& nodes = s.nodes;
   // In the node loops' static shares (as update_grid's): each thread writes the nodes it
   // updates next, where one thread writing them all cost the two-thread step 14-22 us.
   COSMPM_OMP_PARALLEL(s.threads, range.size()) {
     const Share share = node_share(range);
     detail::add_pending_upper(pending, scattered, share.first, share.last);
-    for (Index n = share.first; n < share.last; ++n) {
-      const double* const record = scattered + n * size;
-      nodes.mass[n] = record[Record::mass];
-      if constexpr (State::transfer_type::affine) {
-        nodes.momentum[n] =
-            nodal_momentum(s, n, record + Record::momentum, record + Record::affine);
-      } else {
-        for (int d = 0; d < Dim; ++d) nodes.momentum[n][d] = record[Record::momentum + d];
-      }
-      for (int d = 0; d < Dim; ++d) {
-        if (with_forces) nodes.force[n][d] = record[Record::force + d];
-      }
-      for (int k = 0; k < R; ++k) {
-        nodes.rotational_inertia[n * R + k] = record[Record::inertia + k];
-        nodes.spin_momentum[n * R + k] = record[Record::spin_momentum + k];
-        if (with_forces) nodes.moment[n * R + k] = record[Record::moment + k];
-      }
-      // Zeroed for the next writer (stages/records.hpp), in stores of a constant count: a
-      // count known at run time took a call per node (USL's step +4 %).
-      double* const zeroed = scattered + n * size;
-      if (with_forces) {
-        std::fill(zeroed, zeroed + Record::all, 0.0);
-      } else {
-        std::fill(zeroed, zeroed + Record::weighted, 0.0);
-      }
+    if (with_forces) {
+      for (Index n = share.first; n < share.last; ++n)
+        detail::node_from_record<true>(s, n, scattered + n * size);
+    } else {
+      for (Index n = share.first; n < share.last; ++n)
+        detail::node_from_record<false>(s, n, scattered + n * size);
     }
   }
   detail::records_read_and_zeroed(s, range.first * size, range.end * size);
 }
 
-// Particle mass and momentum (and, with_forces, internal and external forces) to the nodes.
-// Buckets particles into coloured blocks first.
+namespace detail {
+
+// map_to_grid's particle pass: the records in s.scatter, the node fields not yet taken.
 template <class State>
-void map_to_grid(State& s, bool with_forces) {
+void scatter_to_records(State& s, bool with_forces) {
   constexpr int Dim = State::dim;
   const auto& x = s.particles.template get<particles::field::Position<Dim>>();
   const shape::StencilGrid<Dim> stencil_grid(s.grid);
   s.blocks.bucket(x, s.particles.size(), stencil_grid);
   const auto scatter = [&] {
-    return with_forces ? detail::scatter_particles<true>(s) : detail::scatter_particles<false>(s);
+    return with_forces ? scatter_particles<true>(s) : scatter_particles<false>(s);
   };
   if (!scatter()) {
     // Particles were moved outside the engine since the last step (e.g. by the user): the
@@ -348,6 +322,15 @@ void map_to_grid(State& s, bool with_forces) {
     s.blocks.resort(x, s.particles.size(), stencil_grid);
     require(scatter(), "Simulation::map_to_grid: particle blocks inconsistent after sorting");
   }
+}
+
+}  // namespace detail
+
+// Particle mass and momentum (and, with_forces, internal and external forces) to the nodes.
+// Buckets particles into coloured blocks first.
+template <class State>
+void map_to_grid(State& s, bool with_forces) {
+  detail::scatter_to_records(s, with_forces);
   nodes_from_records(s, with_forces);
 }
 

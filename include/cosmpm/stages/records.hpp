@@ -8,7 +8,9 @@
 // Any writer and any reader may run in any order: what no reader zeroed stays in the extent
 // and is cleared by the next writer that needs it.
 #include <algorithm>
+#include <string>
 
+#include "cosmpm/core/error.hpp"
 #include "cosmpm/core/types.hpp"
 #include "cosmpm/simulation/node_fields.hpp"
 
@@ -47,6 +49,52 @@ void records_read_and_zeroed(State& s, Index first, Index end) {
   } else if (end >= dirty.end && first < dirty.end) {
     dirty.end = first;
   }
+}
+
+// The fused pass's second-half records not yet added (stages/fused_pass.hpp, over_halves):
+// the node pass that reads the records adds them, in its own thread's nodes, so no thread
+// adds them all alone between the passes.
+struct PendingUpper {
+  double* upper = nullptr;
+  Index first = 0;
+  Index end = 0;
+  Index width = 0;
+};
+
+// Takes the pending second-half records for a node pass over records of `width` doubles.
+template <class State>
+PendingUpper take_pending_upper(State& s, Index width) {
+  const PendingUpper pending{s.scatter_upper.data(), s.upper_first, s.upper_end, width};
+  if (pending.end > pending.first) {
+    require(s.upper_width == width, "a node pass read " + std::to_string(width) +
+                                        " doubles per node where the fused pass wrote " +
+                                        std::to_string(s.upper_width));
+  }
+  s.upper_first = s.upper_end = 0;
+  return pending;
+}
+
+// The records of the nodes [first, last) completed: their second-half terms added to their
+// first half's, in that order, and zeroed for the next pass.
+inline void add_pending_upper(const PendingUpper& pending, double* records, Index first,
+                              Index last) {
+  first = std::max(first, pending.first);
+  last = std::min(last, pending.end);
+  double* const upper = pending.upper;
+  for (Index i = first * pending.width; i < last * pending.width; ++i) {
+    records[i] += upper[i];
+    upper[i] = 0.0;
+  }
+}
+
+// Drops pending second-half records: whatever clears the records starts afresh.
+template <class State>
+void discard_pending_upper(State& s) {
+  if (s.upper_end > s.upper_first) {
+    const auto at = [&](Index n) { return s.scatter_upper.begin() + n * s.upper_width; };
+    std::fill(at(s.upper_first), at(s.upper_end), 0.0);
+  }
+  s.upper_first = s.upper_end = 0;
 }
 
 }  // namespace cosmpm::stages::detail
