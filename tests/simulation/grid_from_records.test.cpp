@@ -15,7 +15,6 @@
 
 namespace {
 using namespace cosmpm;
-using test::same_bits;
 using test::sliding_block;
 using test::Soil;
 using Polar = test::PolarContinuum;
@@ -82,33 +81,6 @@ struct SlowStart {
   }
 };
 
-template <class A, class B>
-void check_same(const A& a, const B& b) {
-  namespace field = particles::field;
-  using Model = typename A::model_type;
-  const auto& p = a.particles();
-  const auto& q = b.particles();
-  CHECK(same_bits(p.template get<field::Position<2>>(), q.template get<field::Position<2>>()));
-  CHECK(same_bits(p.template get<field::Velocity<2>>(), q.template get<field::Velocity<2>>()));
-  CHECK(same_bits(p.template get<field::Stress<Model>>(), q.template get<field::Stress<Model>>()));
-  CHECK(same_bits(p.template get<field::MaterialState<Model>>(),
-                  q.template get<field::MaterialState<Model>>()));
-  if constexpr (A::continuum_type::rotational_dofs > 0) {
-    CHECK(same_bits(p.template get<field::MicroSpin>(), q.template get<field::MicroSpin>()));
-  }
-  const auto& m = a.nodes();
-  const auto& n = b.nodes();
-  CHECK(same_bits(m.mass, n.mass));
-  CHECK(same_bits(m.momentum, n.momentum));
-  CHECK(same_bits(m.velocity, n.velocity));
-  CHECK(same_bits(m.acceleration, n.acceleration));
-  CHECK(same_bits(m.force, n.force));
-  CHECK(same_bits(m.rotational_inertia, n.rotational_inertia));
-  CHECK(same_bits(m.spin_momentum, n.spin_momentum));
-  CHECK(same_bits(m.spin, n.spin));
-  CHECK(same_bits(m.moment, n.moment));
-}
-
 // Steps a run of `Scheme` and one of `Apart` side by side and compares them every 20 steps.
 template <class Continuum, class Scheme, class Apart, class Contact = contact::SingleField,
           class Transfer = transfer::FlipBlend, class Kernel = shape::Linear>
@@ -124,7 +96,7 @@ void check_from_records(int threads, bool wide, double damping, const std::strin
   for (int i = 1; i <= 100; ++i) {
     one_pass.step(dt);
     apart.step(dt);
-    if (i % 20 == 0) check_same(one_pass, apart);
+    if (i % 20 == 0) test::check_same_fields(one_pass, apart);
   }
 }
 }  // namespace

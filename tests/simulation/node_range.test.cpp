@@ -60,34 +60,12 @@ Sim thrown_up(int threads, bool prune, bool wide) {
   return sim;
 }
 
-using test::same_bits;
 
 // Particles and every node field, bit for bit.
 template <class Sim>
 void check_same(const Sim& a, const Sim& b, const std::string& label) {
-  namespace field = particles::field;
-  using Model = typename Sim::model_type;
   INFO(label);
-  CHECK(same_bits(a.particles().template get<field::Position<2>>(),
-                  b.particles().template get<field::Position<2>>()));
-  CHECK(same_bits(a.particles().template get<field::Velocity<2>>(),
-                  b.particles().template get<field::Velocity<2>>()));
-  CHECK(same_bits(a.particles().template get<field::Stress<Model>>(),
-                  b.particles().template get<field::Stress<Model>>()));
-  CHECK(same_bits(a.particles().template get<field::DeformationGradient<2>>(),
-                  b.particles().template get<field::DeformationGradient<2>>()));
-  const auto& n = a.nodes();
-  const auto& m = b.nodes();
-  CHECK(same_bits(n.mass, m.mass));
-  CHECK(same_bits(n.momentum, m.momentum));
-  CHECK(same_bits(n.force, m.force));
-  CHECK(same_bits(n.velocity, m.velocity));
-  CHECK(same_bits(n.acceleration, m.acceleration));
-  CHECK(same_bits(n.rotational_inertia, m.rotational_inertia));
-  CHECK(same_bits(n.spin_momentum, m.spin_momentum));
-  CHECK(same_bits(n.moment, m.moment));
-  CHECK(same_bits(n.spin, m.spin));
-  CHECK(same_bits(n.spin_acceleration, m.spin_acceleration));
+  test::check_same_fields(a, b);
 }
 
 // Steps both runs through the throw, comparing them every 50 steps, and checks that the range

@@ -1,6 +1,11 @@
 #pragma once
 // A plastic test block shared by the tests that compare two runs bit for bit
-// (stress_from_grid.test.cpp, records.test.cpp, node_range.test.cpp).
+// (stress_from_grid.test.cpp, grid_from_records.test.cpp, records.test.cpp,
+// node_range.test.cpp), and their comparison.
+#include <doctest/doctest.h>
+
+#include <bit>
+#include <cstdint>
 #include <cstring>
 #include <type_traits>
 #include <vector>
@@ -59,6 +64,55 @@ template <class T>
 bool same_bits(const std::vector<T>& a, const std::vector<T>& b) {
   return a.size() == b.size() &&
          (a.empty() || std::memcmp(a.data(), b.data(), a.size() * sizeof(T)) == 0);
+}
+
+// Two 2D runs' particle fields and every node field, bit for bit.
+template <class A, class B>
+void check_same_fields(const A& a, const B& b) {
+  namespace field = particles::field;
+  using Model = typename A::model_type;
+  const auto& p = a.particles();
+  const auto& q = b.particles();
+  CHECK(same_bits(p.template get<field::Position<2>>(), q.template get<field::Position<2>>()));
+  CHECK(same_bits(p.template get<field::Velocity<2>>(), q.template get<field::Velocity<2>>()));
+  CHECK(same_bits(p.template get<field::Stress<Model>>(), q.template get<field::Stress<Model>>()));
+  CHECK(same_bits(p.template get<field::Strain<Model>>(), q.template get<field::Strain<Model>>()));
+  // The states by their values: NoState's one byte is never written.
+  const auto& state_a = p.template get<field::MaterialState<Model>>();
+  const auto& state_b = q.template get<field::MaterialState<Model>>();
+  REQUIRE(state_a.size() == state_b.size());
+  bool same_states = true;
+  for (std::size_t i = 0; i < state_a.size(); ++i) {
+    const auto u = state_a[i].values();
+    const auto v = state_b[i].values();
+    for (std::size_t k = 0; k < u.size(); ++k) {
+      same_states =
+          same_states && std::bit_cast<std::uint64_t>(u[k]) == std::bit_cast<std::uint64_t>(v[k]);
+    }
+  }
+  CHECK(same_states);
+  CHECK(same_bits(p.template get<field::VelocityGradient<2>>(),
+                  q.template get<field::VelocityGradient<2>>()));
+  CHECK(same_bits(p.template get<field::DeformationGradient<2>>(),
+                  q.template get<field::DeformationGradient<2>>()));
+  CHECK(same_bits(p.template get<field::Volume>(), q.template get<field::Volume>()));
+  if constexpr (A::continuum_type::rotational_dofs > 0) {
+    CHECK(same_bits(p.template get<field::MicroSpin>(), q.template get<field::MicroSpin>()));
+    CHECK(
+        same_bits(p.template get<field::MicroRotation>(), q.template get<field::MicroRotation>()));
+  }
+  const auto& n = a.nodes();
+  const auto& m = b.nodes();
+  CHECK(same_bits(n.mass, m.mass));
+  CHECK(same_bits(n.momentum, m.momentum));
+  CHECK(same_bits(n.force, m.force));
+  CHECK(same_bits(n.velocity, m.velocity));
+  CHECK(same_bits(n.acceleration, m.acceleration));
+  CHECK(same_bits(n.rotational_inertia, m.rotational_inertia));
+  CHECK(same_bits(n.spin_momentum, m.spin_momentum));
+  CHECK(same_bits(n.moment, m.moment));
+  CHECK(same_bits(n.spin, m.spin));
+  CHECK(same_bits(n.spin_acceleration, m.spin_acceleration));
 }
 
 }  // namespace cosmpm::test

@@ -13,7 +13,6 @@
 
 namespace {
 using namespace cosmpm;
-using test::same_bits;
 using test::sliding_block;
 using test::Soil;
 using Polar = test::PolarContinuum;
@@ -45,33 +44,6 @@ struct USFApart {
   }
 };
 
-template <class A, class B>
-void check_same(const A& a, const B& b) {
-  namespace field = particles::field;
-  using Model = typename A::model_type;
-  const auto& p = a.particles();
-  const auto& q = b.particles();
-  CHECK(same_bits(p.template get<field::Position<2>>(), q.template get<field::Position<2>>()));
-  CHECK(same_bits(p.template get<field::Velocity<2>>(), q.template get<field::Velocity<2>>()));
-  CHECK(same_bits(p.template get<field::Stress<Model>>(), q.template get<field::Stress<Model>>()));
-  CHECK(same_bits(p.template get<field::Strain<Model>>(), q.template get<field::Strain<Model>>()));
-  CHECK(same_bits(p.template get<field::MaterialState<Model>>(),
-                  q.template get<field::MaterialState<Model>>()));
-  CHECK(same_bits(p.template get<field::VelocityGradient<2>>(),
-                  q.template get<field::VelocityGradient<2>>()));
-  CHECK(same_bits(p.template get<field::DeformationGradient<2>>(),
-                  q.template get<field::DeformationGradient<2>>()));
-  CHECK(same_bits(p.template get<field::Volume>(), q.template get<field::Volume>()));
-  if constexpr (A::continuum_type::rotational_dofs > 0) {
-    CHECK(same_bits(p.template get<field::MicroSpin>(), q.template get<field::MicroSpin>()));
-    CHECK(
-        same_bits(p.template get<field::MicroRotation>(), q.template get<field::MicroRotation>()));
-  }
-  CHECK(same_bits(a.nodes().velocity, b.nodes().velocity));
-  CHECK(same_bits(a.nodes().force, b.nodes().force));
-  CHECK(same_bits(a.nodes().moment, b.nodes().moment));
-}
-
 // Steps a run of `Scheme` and one of `Apart` side by side and compares them every 20 steps;
 // the block must have gone plastic, so the model's return is in the comparison.
 template <class Continuum, class Scheme, class Apart>
@@ -85,7 +57,7 @@ void check_one_pass(int threads, bool wide, const std::string& label) {
   for (int i = 1; i <= 100; ++i) {
     one_pass.step(dt);
     apart.step(dt);
-    if (i % 20 == 0) check_same(one_pass, apart);
+    if (i % 20 == 0) test::check_same_fields(one_pass, apart);
   }
   using Model = typename Sim::model_type;
   const auto& state =
