@@ -60,7 +60,6 @@ Sim thrown_up(int threads, bool prune, bool wide) {
   return sim;
 }
 
-
 // Particles and every node field, bit for bit.
 template <class Sim>
 void check_same(const Sim& a, const Sim& b, const std::string& label) {
