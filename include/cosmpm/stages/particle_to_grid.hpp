@@ -233,10 +233,6 @@ bool scatter_particles(State& s) {
   return first_misplaced == count;
 }
 
-}  // namespace detail
-
-namespace detail {
-
 // Node n's fields from its record of the particle-to-grid map (mass, momentum and, with
 // forces, force and moments), and the record zeroed for the next writer (stages/records.hpp).
 template <bool with_forces, class State>
