@@ -12,13 +12,6 @@
 // - MUSL, map_to_particles_and_remap: the grid-to-particle map, then the particle's remap of
 //   its new momenta at the same stencil, so the remap is no pass of its own.
 //
-// Deterministic sums without colours: the particles are cut into two halves by index, and each
-// half scatters into its own node records (the first into s.scatter, the second into
-// s.scatter_upper), added by the node pass that reads them. Each nodal sum is (its first-half terms
-// in index order) + (its second-half terms in index order), on one thread or two; so the pass runs
-// on at most two threads. The sums are USL's and MUSL's terms in another order: results differ from
-// the unfused schemes' by rounding (tests/simulation/fused.test.cpp bounds it).
-//
 // The records stay valid while nothing else touches the particles. Simulation drops them when
 // a user takes the particles, the continuum or the engine state for writing; every stage that
 // writes the records drops them too. map_to_grid_or_reuse then scatters afresh, in the same
@@ -35,6 +28,7 @@
 #include "cosmpm/particles/fields.hpp"
 #include "cosmpm/shape/stencil_grid.hpp"
 #include "cosmpm/simulation/diagnostics.hpp"
+#include "cosmpm/stages/fused_scatter.hpp"
 #include "cosmpm/stages/grid_to_particle.hpp"
 #include "cosmpm/stages/grid_update.hpp"
 #include "cosmpm/stages/node_range.hpp"
@@ -46,169 +40,6 @@
 namespace cosmpm::stages {
 
 namespace detail {
-
-// What one half of a fused pass finds: the first particle of each kind (count for none) and
-// the lowest and highest first node of its stencils.
-struct alignas(64) FusedHalfReport {
-  Index first_outside;
-  Index first_bad;
-  Index first_moved;
-  Index first_invalid;  // no valid stencil at the new position
-  Index lowest_node;
-  Index highest_node;
-};
-
-// The next step's scatter of particle q at its current position into `records`.
-template <class State>
-COSMPM_ALWAYS_INLINE void scatter_next(State& s, const ScatterSources<State>& from, Index q,
-                                       const shape::StencilGrid<State::dim>& stencil_grid,
-                                       double* records, FusedHalfReport& report) {
-  typename State::stencil_type st;
-  if (!st.try_compute(stencil_grid, from.x[q], from.half[q])) [[unlikely]] {
-    record_first(report.first_invalid, q);
-    return;
-  }
-  for (int d = 0; d < State::dim; ++d) s.stencil_cells[q][d] = st.position_in_cells[d];
-  report.lowest_node = std::min(report.lowest_node, st.first_node);
-  report.highest_node = std::max(report.highest_node, st.first_node);
-  scatter_particle<true, State>(s.particles, from, q, st, s.stencil_cells[q], stencil_grid,
-                                records);
-}
-
-// Kernels whose stencils scatter_next_pack computes side by side: those that evaluate whole
-// packs (Linear, the B-splines) and need no half-width check.
-template <class State>
-inline constexpr bool packs_next_stencils = requires(
-    const Pack<pack_width>& x, std::array<Pack<pack_width>, State::kernel_type::support>& f) {
-  State::kernel_type::evaluate_lanes(x, Index{}, f, f);
-}
-&&!shape::UsesHalfWidth<typename State::kernel_type>;
-
-// scatter_next for particles p, ..., p + W - 1 in that order, their stencils computed side by
-// side with each lane's arithmetic as SeparableStencil::try_compute's, so the same records. A
-// pack with a lane outside the valid range goes lane by lane, which reports it.
-template <int W, class State>
-COSMPM_ALWAYS_INLINE void scatter_next_pack(State& s, const ScatterSources<State>& from, Index p,
-                                            const shape::StencilGrid<State::dim>& stencil_grid,
-                                            double* records, FusedHalfReport& report) {
-  constexpr int Dim = State::dim;
-  using K = typename State::kernel_type;
-  using P = Pack<W>;
-  if constexpr (W > 1 && packs_next_stencils<State> &&
-                K::support <= shape::StencilGrid<Dim>::tabled_support) {
-    std::array<P, Dim> xi;
-    bool valid = true;
-    const std::array<P, Dim> x_now =
-        load_by_component<W, Dim>([&](int l) { return from.x[p + l].data(); });
-    for (int d = 0; d < Dim; ++d) {
-      const P x = x_now[d];
-      xi[d] = (x - stencil_grid.origin[d]) * stencil_grid.inverse_cell_size[d];
-      valid &=
-          all_lanes<W>((xi[d] >= 0.0) & (xi[d] <= stencil_grid.upper_for_support[K::support][d]));
-    }
-    if (valid) [[likely]] {
-      std::array<P, Dim> in_cells;
-      for (int d = 0; d < Dim; ++d) {
-        const P last = P{} + stencil_grid.last[d];
-        in_cells[d] = xi[d] < last ? xi[d] : last;
-      }
-      store_by_component<W, Dim>([&](int l) { return s.stencil_cells[p + l].data(); }, in_cells);
-      PackedStencilOf<State, W> st;
-      st.compute_from_cell_units(
-          stencil_grid, [&](int l) -> const Vec<Dim>& { return s.stencil_cells[p + l]; },
-          [&](int l) -> const Vec<Dim>& { return from.half[p + l]; });
-      for (int l = 0; l < W; ++l) {
-        const Index q = p + l;
-        report.lowest_node = std::min(report.lowest_node, st.first_node[l]);
-        report.highest_node = std::max(report.highest_node, st.first_node[l]);
-        scatter_particle<true, State>(s.particles, from, q, st.lane(l), s.stencil_cells[q],
-                                      stencil_grid, records);
-      }
-      return;
-    }
-  }
-  for (int l = 0; l < W; ++l) scatter_next(s, from, p + l, stencil_grid, records, report);
-}
-
-// scatter_next for particles first, ..., last - 1: packs from `first`, the rest one by one. The
-// fused USL pass groups its particles the same way; a fresh scatter must too, so that it repeats
-// the pass's bits where the compiler contracts multiply-adds (-march=native).
-template <class State>
-COSMPM_ALWAYS_INLINE void scatter_next_range(State& s, const ScatterSources<State>& from,
-                                             Index first, Index last,
-                                             const shape::StencilGrid<State::dim>& stencil_grid,
-                                             double* records, FusedHalfReport& report) {
-  constexpr int W = pack_width;
-  Index q = first;
-  for (; q + W <= last; q += W) scatter_next_pack<W>(s, from, q, stencil_grid, records, report);
-  for (; q < last; ++q) scatter_next(s, from, q, stencil_grid, records, report);
-}
-
-// The nodes the stencils of a fused pass's scatter reach, from the report of a scatter of
-// every particle: the node range of the step that reads its records.
-template <class State>
-NodeRange scattered_nodes(const State& s, const FusedHalfReport& all) {
-  if (all.highest_node < 0) return {0, 0};
-  std::array<Index, State::dim> last_offset;
-  last_offset.fill(State::kernel_type::support - 1);
-  return {all.lowest_node, all.highest_node + s.grid.node_index(last_offset) + 1};
-}
-
-// The next step's node range from the report of a scatter of every particle, which wrote the
-// records (C doubles per node, all zeroed before it) only there (stages/records.hpp).
-template <int C, class State>
-NodeRange note_scattered_nodes(State& s, const FusedHalfReport& all) {
-  const NodeRange nodes = scattered_nodes(s, all);
-  records_written_within(s, C * nodes.first, C * nodes.end);
-  return nodes;
-}
-
-// Runs visit(first, last, records, report) over the two halves of the particles, on up to two
-// threads: the first half into `lower` (zeroed, in s.scatter, C doubles per node), the second
-// into s.scatter_upper, left pending for the node pass that reads the records
-// (particle_to_grid.hpp, add_pending_upper). The cut is a multiple of 64 (stress_update.hpp's
-// runs, and a whole number of packs), so each half starts a run.
-template <int C, class State, class Visit>
-FusedHalfReport over_halves(State& s, double* const lower, Visit&& visit) {
-  discard_pending_upper(s);  // as the clear of `lower` did
-  const Index count = s.particles.size();
-  const Index cut = count / 2 / update_run * update_run;
-  s.scatter_upper.resize(s.scatter.size(), 0.0);
-  double* const upper = s.scatter_upper.data();
-  s.stencil_cells.resize(static_cast<std::size_t>(count));
-  std::array<FusedHalfReport, 2> reports;
-  for (auto& r : reports) {
-    r = {count, count, count, count, s.grid.node_count(), -1};
-  }
-  [[maybe_unused]] const int threads = std::min(s.threads, 2);
-  int team = 1;
-#if defined(_OPENMP)
-#pragma omp parallel for schedule(static) num_threads(threads) if (count >= parallel_threshold) \
-    reduction(max                                                                               \
-              : team)
-#endif
-  for (int h = 0; h < 2; ++h) {
-    team = current_team_size();
-    visit(h == 0 ? Index{0} : cut, h == 0 ? cut : count, h == 0 ? lower : upper, reports[h]);
-  }
-  s.fused_team = team;
-  // The second half's nodes: from its lowest first node to its highest one's stencil end.
-  const FusedHalfReport& second = reports[1];
-  if (second.highest_node >= 0) {
-    const NodeRange nodes = scattered_nodes(s, second);
-    s.upper_first = nodes.first;
-    s.upper_end = nodes.end;
-    s.upper_width = C;
-  }
-  FusedHalfReport all = reports[0];
-  all.first_outside = std::min(all.first_outside, second.first_outside);
-  all.first_bad = std::min(all.first_bad, second.first_bad);
-  all.first_moved = std::min(all.first_moved, second.first_moved);
-  all.first_invalid = std::min(all.first_invalid, second.first_invalid);
-  all.lowest_node = std::min(all.lowest_node, second.lowest_node);
-  all.highest_node = std::max(all.highest_node, second.highest_node);
-  return all;
-}
 
 template <VelocityUpdate update, class State>
 void map_to_particles_and_grid(State& s, double dt) {
