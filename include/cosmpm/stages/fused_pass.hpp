@@ -51,7 +51,7 @@ void map_to_particles_and_grid(State& s, double dt) {
   constexpr int C = State::scatter_record::all;
   const FusedHalfReport all =
       over_halves<C>(s, clear_scatter_records<true>(s, all_nodes(s)),
-                     [&](Index first, Index last, double* records, FusedHalfReport& r) {
+                     [&](Index first, Index last, double* records, FusedHalfReport r) {
                        Index p = first;
                        for (; p + W <= last; p += W) {
                          PackedStencilOf<State, W> st;
@@ -65,6 +65,7 @@ void map_to_particles_and_grid(State& s, double dt) {
                                                         r.first_bad, r.first_moved);
                          scatter_next(s, from, p, pass.stencil_grid, records, r);
                        }
+                       return r;
                      });
   finish_map(s, all.first_outside, all.first_bad, all.first_moved);
   s.prescattered = all.first_outside == count && all.first_invalid == count;
@@ -86,7 +87,7 @@ void map_to_particles_and_remap(State& s, double dt) {
   };
   double* const records = clear_remap_records(s);
   const FusedHalfReport all = over_halves<remap_components<State>>(
-      s, records, [&](Index first, Index last, double* half_records, FusedHalfReport& r) {
+      s, records, [&](Index first, Index last, double* half_records, FusedHalfReport r) {
         Index p = first;
         for (; p + W <= last; p += W) {
           PackedStencilOf<State, W> st;
@@ -100,6 +101,7 @@ void map_to_particles_and_remap(State& s, double dt) {
                                           r.first_moved);
           remap(p, st.lane(0), half_records, r);
         }
+        return r;
       });
   finish_map(s, all.first_outside, all.first_bad, all.first_moved);
   velocities_from_remap(s, records, dt);
@@ -131,8 +133,9 @@ void reuse_or_scatter_records(State& s) {
     const detail::ScatterSources<State> from = detail::scatter_sources(s);
     const detail::FusedHalfReport all = detail::over_halves<State::scatter_record::all>(
         s, detail::clear_scatter_records<true>(s, all_nodes(s)),
-        [&](Index first, Index last, double* records, detail::FusedHalfReport& r) {
+        [&](Index first, Index last, double* records, detail::FusedHalfReport r) {
           detail::scatter_next_range(s, from, first, last, stencil_grid, records, r);
+          return r;
         });
     if (all.first_invalid < count) {
       typename State::stencil_type st;  // throws, naming the particle's position
@@ -191,13 +194,14 @@ void update_stress_and_map_to_grid(State& s, double dt, const double* velocity_r
   const ScatterSources<State> from = scatter_sources(s);
   const FusedHalfReport all = over_halves<State::scatter_record::all>(
       s, clear_scatter_records<true>(s, all_nodes(s)),
-      [&](Index first, Index last, double* records, FusedHalfReport& r) {
+      [&](Index first, Index last, double* records, FusedHalfReport r) {
         for (Index begin = first; begin < last; begin += update_run) {
           const Index end = std::min(begin + update_run, last);
           // Before the scatter moves the run's stencils to the new positions.
           update_stress_of_run(s, begin, end, dt, stencil_grid, velocity_records, r.first_bad);
           scatter_next_range(s, from, begin, end, stencil_grid, records, r);
         }
+        return r;
       });
   if (all.first_bad < count) {
     throw_unstable_stress<State::dim, typename State::model_type>(s.particles, all.first_bad,
