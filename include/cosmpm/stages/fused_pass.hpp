@@ -46,12 +46,14 @@ void map_to_particles_and_grid(State& s, double dt) {
   constexpr int W = pack_width;
   require_start_stencils(s, "map_to_particles_and_grid");
   const Index count = s.particles.size();
-  const auto pass = map_pass(s, dt);
+  const auto shared_pass = map_pass(s, dt);
   const ScatterSources<State> from = scatter_sources(s);
   constexpr int C = State::scatter_record::all;
   const FusedHalfReport all =
       over_halves<C>(s, clear_scatter_records<true>(s, all_nodes(s)),
                      [&](Index first, Index last, double* records, FusedHalfReport r) {
+                       // Its own copy: the particles' stores could alias the caller's.
+                       const auto pass = shared_pass;
                        Index p = first;
                        for (; p + W <= last; p += W) {
                          PackedStencilOf<State, W> st;
@@ -78,16 +80,17 @@ template <VelocityUpdate update, class State>
 void map_to_particles_and_remap(State& s, double dt) {
   constexpr int W = pack_width;
   require_start_stencils(s, "map_to_particles_and_remap");
-  const auto pass = map_pass(s, dt);
-  const auto remap = [&](Index p, const typename State::stencil_type& st, double* records,
-                         FusedHalfReport& r) COSMPM_INLINE_LAMBDA {
-    r.lowest_node = std::min(r.lowest_node, st.first_node);
-    r.highest_node = std::max(r.highest_node, st.first_node);
-    remap_particle(s, p, st, pass.stencil_grid, records);
-  };
+  const auto shared_pass = map_pass(s, dt);
   double* const records = clear_remap_records(s);
   const FusedHalfReport all = over_halves<remap_components<State>>(
       s, records, [&](Index first, Index last, double* half_records, FusedHalfReport r) {
+        const auto pass = shared_pass;  // its own copy, as map_to_particles_and_grid's
+        const auto remap = [&](Index p, const typename State::stencil_type& st, double* to,
+                               FusedHalfReport& report) COSMPM_INLINE_LAMBDA {
+          report.lowest_node = std::min(report.lowest_node, st.first_node);
+          report.highest_node = std::max(report.highest_node, st.first_node);
+          remap_particle(s, p, st, pass.stencil_grid, to);
+        };
         Index p = first;
         for (; p + W <= last; p += W) {
           PackedStencilOf<State, W> st;
