@@ -8,6 +8,7 @@
 
 #include "cosmpm/contact/concept.hpp"
 #include "cosmpm/contact/grid_view.hpp"
+#include "cosmpm/core/compiler.hpp"
 #include "cosmpm/core/pack.hpp"
 #include "cosmpm/core/pack_records.hpp"
 #include "cosmpm/core/parallel.hpp"
@@ -104,6 +105,43 @@ void grid_velocity_from_momentum(State& s, double dt) {
 
 namespace detail {
 
+// The grid update's momentum update of one node, its constants and node arrays held by value.
+// Made inside each thread's region, they stay in registers; the region's shared variables (and
+// a lambda's captures) are read through a pointer, and were reloaded per node.
+template <int Dim>
+struct NodeMomentumUpdate {
+  double dt;
+  double damping;
+  const Vec<Dim>* force;
+  Vec<Dim>* momentum;
+  Vec<Dim>* velocity;
+
+  // Cundall: oppose the motion with a fraction of the unbalanced force, per component.
+  COSMPM_ALWAYS_INLINE static double damped(double damping, double force, double rate) {
+    const double sign = rate > 0.0 ? 1.0 : (rate < 0.0 ? -1.0 : 0.0);
+    return force - damping * std::abs(force) * sign;
+  }
+  // From the start velocity v_start: momentum becomes v_start, velocity the trial end velocity.
+  COSMPM_ALWAYS_INLINE void operator()(Index n, double inverse_mass,
+                                       const Vec<Dim>& v_start) const {
+    Vec<Dim> f = force[n];
+    if (damping > 0.0) {
+      for (int d = 0; d < Dim; ++d) f[d] = damped(damping, f[d], v_start[d]);
+    }
+    momentum[n] = v_start;
+    velocity[n] = v_start + (dt * inverse_mass) * f;
+  }
+  COSMPM_ALWAYS_INLINE void clear(Index n) const {
+    momentum[n].setZero();
+    velocity[n].setZero();
+  }
+};
+
+template <int Dim, class Nodes>
+NodeMomentumUpdate<Dim> node_momentum_update(Nodes& nodes, double dt, double damping) {
+  return {dt, damping, nodes.force.data(), nodes.momentum.data(), nodes.velocity.data()};
+}
+
 // update_grid; from_records: the node fields first taken from the particle-to-grid records
 // (nodes_from_records) in the same node pass, where contact neither adds forces nor corrects
 // the start velocity (map_and_update_grid checks).
@@ -130,27 +168,13 @@ void update_grid_pass(State& s, double dt) {
     s.contact.add_forces(view);
   }
   const double damping = s.parameters.damping;
-  // Cundall: oppose the motion with a fraction of the unbalanced force, per component.
-  const auto damped = [damping](double force, double rate) {
-    const double sign = rate > 0.0 ? 1.0 : (rate < 0.0 ? -1.0 : 0.0);
-    return force - damping * std::abs(force) * sign;
-  };
-  // The momentum update of node n from its start velocity v_start: nodes.momentum becomes
-  // v_start, nodes.velocity the trial end velocity.
-  const auto update_node = [&](Index n, double inverse_mass, const Vec<Dim>& v_start) {
-    Vec<Dim> force = nodes.force[n];
-    if (damping > 0.0) {
-      for (int d = 0; d < Dim; ++d) force[d] = damped(force[d], v_start[d]);
-    }
-    nodes.momentum[n] = v_start;
-    nodes.velocity[n] = v_start + (dt * inverse_mass) * force;
-  };
   // The rotational rates of nodes [first_node, end_node) likewise, from their start spins in
   // spin_momentum (as rates when spin_is_rate, else as moments of momentum); a node without
   // mass takes zero rates. A loop of its own, on packs where one dof per node and no damping
   // let it (the scalar loop's three divisions per node made the Cosserat grid update take 1.8
   // times the classical one); each lane's arithmetic is the scalar loop's.
   const auto update_rotations = [&](Index first_node, Index end_node, bool spin_is_rate) {
+    const double step = dt, empty_mass = empty, spin_damping = damping;  // in registers
     const double* const mass = nodes.mass.data();
     const double* const inertia = nodes.rotational_inertia.data();
     const double* const moment = nodes.moment.data();
@@ -162,30 +186,26 @@ void update_grid_pass(State& s, double dt) {
       using P = Pack<W>;
       using cosmpm::detail::load_pack;
       using cosmpm::detail::store_pack;
-      for (; damping == 0.0 && i + W <= end_node; i += W) {
-        const auto live = load_pack<W>(mass + i) > empty;
+      for (; spin_damping == 0.0 && i + W <= end_node; i += W) {
+        const auto live = load_pack<W>(mass + i) > empty_mass;
         const P j = live ? load_pack<W>(inertia + i) : P{} + 1.0;
         const P momentum = load_pack<W>(spin_momentum + i);
         const P start = spin_is_rate ? momentum : momentum / j;
         store_pack<W>(spin_momentum + i, live ? start : P{});
-        store_pack<W>(spin + i, live ? start + dt * load_pack<W>(moment + i) / j : P{});
+        store_pack<W>(spin + i, live ? start + step * load_pack<W>(moment + i) / j : P{});
       }
     }
     for (; i < end_node * R; ++i) {
-      if (mass[i / R] <= empty) {
+      if (mass[i / R] <= empty_mass) {
         spin_momentum[i] = spin[i] = 0.0;
         continue;
       }
       const double spin_start = spin_is_rate ? spin_momentum[i] : spin_momentum[i] / inertia[i];
       double m = moment[i];
-      if (damping > 0.0) m = damped(m, spin_start);
+      if (spin_damping > 0.0) m = NodeMomentumUpdate<Dim>::damped(spin_damping, m, spin_start);
       spin_momentum[i] = spin_start;
-      spin[i] = spin_start + dt * m / inertia[i];
+      spin[i] = spin_start + step * m / inertia[i];
     }
-  };
-  const auto clear_empty_node = [&](Index n) {
-    nodes.momentum[n].setZero();
-    nodes.velocity[n].setZero();
   };
   if (contact::corrects_start_of_step(s.contact)) {
     // Nairn, Hammerquist and Smith (2020): contact corrects the start velocity as well, so
@@ -194,12 +214,15 @@ void update_grid_pass(State& s, double dt) {
     grid_velocity_from_momentum(s, dt);
     COSMPM_OMP_PARALLEL(s.threads, end - first) {
       const Share share = node_share(s.node_range);
+      const auto update_node = node_momentum_update<Dim>(nodes, dt, damping);
+      const double* const mass = nodes.mass.data();
+      const double empty_mass = empty;
       for (Index n = share.first; n < share.last; ++n) {
-        if (nodes.mass[n] <= empty) {
-          clear_empty_node(n);
+        if (mass[n] <= empty_mass) {
+          update_node.clear(n);
           continue;
         }
-        update_node(n, 1.0 / nodes.mass[n], Vec<Dim>(nodes.momentum[n]));
+        update_node(n, 1.0 / mass[n], Vec<Dim>(update_node.momentum[n]));
       }
       if constexpr (R > 0) update_rotations(share.first, share.last, /*spin_is_rate=*/true);
     }
@@ -209,17 +232,20 @@ void update_grid_pass(State& s, double dt) {
     const PendingUpper pending = from_records ? take_pending_upper(s, size) : PendingUpper{};
     COSMPM_OMP_PARALLEL(s.threads, end - first) {
       const Share share = node_share(s.node_range);
+      const auto update_node = node_momentum_update<Dim>(nodes, dt, damping);
+      const double* const mass = nodes.mass.data();
+      const double empty_mass = empty;
       if constexpr (from_records) add_pending_upper(pending, scattered, share.first, share.last);
       for (Index n = share.first; n < share.last; ++n) {
         // The fields written here are read back at once, from the cache: one node pass less.
         if constexpr (from_records) node_from_record<true>(s, n, scattered + n * size);
-        const double m = nodes.mass[n];
-        if (m <= empty) {
-          clear_empty_node(n);
+        const double m = mass[n];
+        if (m <= empty_mass) {
+          update_node.clear(n);
           continue;
         }
         const double inverse_mass = 1.0 / m;  // one division per node instead of 2 Dim
-        update_node(n, inverse_mass, Vec<Dim>(nodes.momentum[n] * inverse_mass));
+        update_node(n, inverse_mass, Vec<Dim>(update_node.momentum[n] * inverse_mass));
       }
       if constexpr (R > 0) update_rotations(share.first, share.last, /*spin_is_rate=*/false);
     }
@@ -232,20 +258,30 @@ void update_grid_pass(State& s, double dt) {
   // The grid-to-particle pass reads each node's velocity and acceleration as one record.
   s.gather.resize(static_cast<std::size_t>(Record::all * count));
   double* const gathered = s.gather.data();
-  const double inverse_dt = 1.0 / dt;
-  COSMPM_OMP_PARALLEL_FOR(s.threads, end - first)
-  for (Index n = first; n < end; ++n) {
-    nodes.acceleration[n] = (nodes.velocity[n] - nodes.momentum[n]) * inverse_dt;
-    double* const record = gathered + n * Record::all;
-    for (int d = 0; d < Dim; ++d) {
-      record[Record::velocity + d] = nodes.velocity[n][d];
-      record[Record::acceleration + d] = nodes.acceleration[n][d];
-    }
-    for (int k = 0; k < R; ++k) {
-      const std::size_t i = static_cast<std::size_t>(n * R + k);
-      nodes.spin_acceleration[i] = (nodes.spin[i] - nodes.spin_momentum[i]) * inverse_dt;
-      record[Record::spin + k] = nodes.spin[i];
-      record[Record::spin_acceleration + k] = nodes.spin_acceleration[i];
+  const double shared_inverse_dt = 1.0 / dt;
+  COSMPM_OMP_PARALLEL(s.threads, end - first) {
+    const Share share = node_share(s.node_range);
+    // Locals, as the momentum update's.
+    const double inverse_dt = shared_inverse_dt;
+    const Vec<Dim>* const velocity = nodes.velocity.data();
+    const Vec<Dim>* const start_velocity = nodes.momentum.data();
+    Vec<Dim>* const acceleration = nodes.acceleration.data();
+    const double* const spin = nodes.spin.data();
+    const double* const start_spin = nodes.spin_momentum.data();
+    double* const spin_acceleration = nodes.spin_acceleration.data();
+    for (Index n = share.first; n < share.last; ++n) {
+      acceleration[n] = (velocity[n] - start_velocity[n]) * inverse_dt;
+      double* const record = gathered + n * Record::all;
+      for (int d = 0; d < Dim; ++d) {
+        record[Record::velocity + d] = velocity[n][d];
+        record[Record::acceleration + d] = acceleration[n][d];
+      }
+      for (int k = 0; k < R; ++k) {
+        const auto i = n * R + k;
+        spin_acceleration[i] = (spin[i] - start_spin[i]) * inverse_dt;
+        record[Record::spin + k] = spin[i];
+        record[Record::spin_acceleration + k] = spin_acceleration[i];
+      }
     }
   }
 }

@@ -102,14 +102,19 @@ void velocities_from_remap(State& s, double* records, double dt) {
   COSMPM_OMP_PARALLEL(s.threads, range.size()) {
     const Share share = node_share(range);  // the node loops' static shares
     add_pending_upper(pending, records, share.first, share.last);
+    // Locals: the region's shared variables are read through a pointer, reloaded per node.
+    const double empty_mass = empty;
+    const double* const mass = nodes.mass.data();
+    Vec<Dim>* const velocity = nodes.velocity.data();
+    double* const spin = nodes.spin.data();
     for (Index n = share.first; n < share.last; ++n) {
       double* const record = records + n * C;
-      if (nodes.mass[n] <= empty) {
-        nodes.velocity[n].setZero();
+      if (mass[n] <= empty_mass) {
+        velocity[n].setZero();
       } else {
-        nodes.velocity[n] = nodal_momentum(s, n, record, record + Dim + R) / nodes.mass[n];
+        velocity[n] = nodal_momentum(s, n, record, record + Dim + R) / mass[n];
       }
-      for (int k = 0; k < R; ++k) nodes.spin[n * R + k] = record[Dim + k];  // divided below
+      for (int k = 0; k < R; ++k) spin[n * R + k] = record[Dim + k];  // divided below
       std::fill(record, record + C, 0.0);  // for the next writer (stages/records.hpp)
     }
     if constexpr (R > 0) spins_from_momenta<R>(nodes, share.first * R, share.last * R, empty);
