@@ -15,6 +15,7 @@
 #include <array>
 #include <cstddef>
 
+#include "cosmpm/core/compiler.hpp"
 #include "cosmpm/core/pack.hpp"
 #include "cosmpm/material/detail/isotropic_elasticity.hpp"
 #include "cosmpm/material/detail/lanes.hpp"
@@ -94,16 +95,17 @@ struct MohrCoulombBatch2D {
   // new stresses out; per_point_lane(l, old_stress, stress) is the per-point update of lane l
   // (a point apart, or a trial that is not finite), which leaves lane l of `stress` its result.
   template <int L, class State, class PerPointLane>
-  void lanes_by_component(std::array<Lanes<T, L>, 4>& stress,
-                          const std::array<Lanes<T, L>, 4>& de_lanes, State* state,
-                          const PerPointLane& per_point_lane) const {
+  COSMPM_ALWAYS_INLINE void lanes_by_component(std::array<Lanes<T, L>, 4>& stress,
+                                               const std::array<Lanes<T, L>, 4>& de_lanes,
+                                               State* state,
+                                               const PerPointLane& per_point_lane) const {
     using V = Lanes<T, L>;
     using Mask = decltype(V{} < V{});
     const std::array<V, 4> old_stress = stress;
-    V shear_strain, gap;
-    gather_lanes(shear_strain, [&](int l) { return T(state[l].plastic_shear_strain); });
-    gather_lanes(gap, [&](int l) { return T(state[l].separation); });
     const V zero = splat<V>(T(0));
+    // Without separation the gap is never read nor written (it stays as it is).
+    V gap = zero;
+    if (separation) gather_lanes(gap, [&](int l) { return T(state[l].separation); });
 
     // The trial: the per-point update's own formula, on lanes.
     const std::array<V, 4> trial = elastic.template trial<4>(old_stress, de_lanes);
@@ -128,16 +130,21 @@ struct MohrCoulombBatch2D {
     if (separation) per_point_lane_mask = per_point_lane_mask || gap > zero;
     // Runs of elastic points are common (the engine's points come in space order): one branch.
     if (cosmpm::all_lanes<L>(elastic_lane && !per_point_lane_mask)) {
-      stress = trial;
+      // By component: a copy of the whole array became 64-byte moves of the spilled trial,
+      // each loading what two 32-byte stores had just written (no store forwarding).
+      for (int c = 0; c < 4; ++c) stress[c] = trial[c];
       for (int l = 0; l < L; ++l) state[l].plastic = 0.0;
       return;
     }
 
     // The cone return and the rotation back (PlaneStrainSplit::back), for every lane.
+    V shear_strain;
+    gather_lanes(shear_strain, [&](int l) { return T(state[l].plastic_shear_strain); });
     const Mask use_isochoric = shear_strain >= splat<V>(T(dilatancy_cutoff_strain));
     V r1, r2, r3, gamma;
     Mask at_apex;
-    flow.cone_lanes(s1, s2, s3, f, isochoric, use_isochoric, r1, r2, r3, gamma, at_apex);
+    flow.cone_lanes(s1, s2, s3, f, isochoric, use_isochoric, elastic_lane || per_point_lane_mask,
+                    r1, r2, r3, gamma, at_apex);
     const Mask zz_first = tzz >= a;
     const Mask zz_second = !zz_first && tzz >= b;
     const V natural_a = zz_first ? r2 : r1;
@@ -168,7 +175,7 @@ struct MohrCoulombBatch2D {
       }
       state[l].plastic_shear_strain = static_cast<double>(new_shear_strain[l]);
       state[l].plastic = static_cast<double>(plastic[l]);
-      state[l].separation = static_cast<double>(new_gap[l]);
+      if (separation) state[l].separation = static_cast<double>(new_gap[l]);
     }
   }
 };
