@@ -157,7 +157,7 @@ class MohrCoulombReturn {
       r2 = p2;
       r3 = p3;
       gamma = pick(plane_gamma_, isochoric.plane_gamma_) * f;
-      at_apex = in_plane && !in_plane;
+      at_apex = Mask{};  // no lane at the apex
       return;
     }
     const Mask compression_side = p1 < p2;
