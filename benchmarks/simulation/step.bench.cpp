@@ -37,6 +37,22 @@ void full_step(benchmark::State& state) {
   benchmarks::time_full_steps(state, sim);
 }
 
+// The polar step as the flat blade's polar default runs it (examples/03_flat_blade/case.hpp):
+// the micro-inertia 16 times the paper's, so its stable step is the p-wave bound's, as the
+// nonpolar step's (7.5e-5 against 8.0e-5 s), and the timed steps cover the same settling of the
+// block (plastic fraction 0.29 against Mohr-Coulomb's 0.25). At the paper's micro-inertia the
+// step is 2.8e-5 s: the 1000 steps end earlier in the settling, at a plastic fraction of 0.47.
+inline constexpr double flat_blade_micro_inertia_scale = 16.0;
+template <class Scheme>
+void full_step_polar_default(benchmark::State& state) {
+  using Polar = continuum::Cosserat<material::CosseratDruckerPrager<>>;
+  using Sim = Simulation<2, shape::Linear, Polar, contact::SingleField, Scheme>;
+  const grid::Grid<2> grid(Vec<2>(0.0, 0.0), Vec<2>(1.2, 0.5), {120, 50});
+  auto sim = benchmarks::soil_block<Sim>(grid, Vec<2>(1.2, 0.35), static_cast<int>(state.range(0)),
+                                         std::nullopt, flat_blade_micro_inertia_scale);
+  benchmarks::time_full_steps(state, sim);
+}
+
 // The same block 40 times as long (4800 x 50 cells, 672,000 particles, about 300 MB of
 // particle data): the step when the particles no longer fit in the processor's caches.
 template <class Scheme>
@@ -141,6 +157,15 @@ BENCHMARK(full_step<shape::Linear, integrator::MUSL,
     ->Iterations(benchmarks::plastic_steps)
     ->Arg(2)
     ->UseRealTime();
+BENCHMARK(full_step_polar_default<integrator::MUSL>)
+    ->Name("step/linear/MUSL/cosserat_drucker_prager_j16")
+    ->Iterations(benchmarks::plastic_steps)
+    ->Arg(1);
+BENCHMARK(full_step_polar_default<integrator::MUSL>)
+    ->Name("step/linear/MUSL/cosserat_drucker_prager_j16")
+    ->Iterations(benchmarks::plastic_steps)
+    ->Arg(2)
+    ->UseRealTime();
 BENCHMARK(
     full_step<shape::Linear, integrator::USL, continuum::Cosserat<material::CosseratElastic<>>>)
     ->Name("step/linear/USL/cosserat_elastic")
@@ -176,6 +201,12 @@ BENCHMARK(
 BENCHMARK(full_step<shape::Linear, integrator::FusedMUSL,
                     continuum::Cosserat<material::CosseratDruckerPrager<>>>)
     ->Name("step/linear/FusedMUSL/cosserat_drucker_prager")
+    ->Iterations(benchmarks::plastic_steps)
+    ->Arg(1)
+    ->Arg(2)
+    ->UseRealTime();
+BENCHMARK(full_step_polar_default<integrator::FusedMUSL>)
+    ->Name("step/linear/FusedMUSL/cosserat_drucker_prager_j16")
     ->Iterations(benchmarks::plastic_steps)
     ->Arg(1)
     ->Arg(2)

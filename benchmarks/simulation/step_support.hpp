@@ -44,13 +44,16 @@ inline material::CosseratDruckerPrager<> make_model(
   return material::CosseratDruckerPrager<>(2.76e6, 0.2, 2.3e6, 0.01, 26.0, 2.0);
 }
 
-// The continuum of those models (Cosserat: the paper's micro-inertia).
+// The continuum of those models (Cosserat: the paper's micro-inertia, times
+// micro_inertia_scale; a classical continuum ignores the scale).
 template <class Continuum>
-Continuum make_continuum() {
+Continuum make_continuum(double micro_inertia_scale = 1.0) {
   using Model = typename Continuum::model_type;
   if constexpr (Continuum::is_cosserat) {
-    return Continuum(make_model(std::type_identity<Model>{}), {.micro_inertia = 12.5e-6});
+    return Continuum(make_model(std::type_identity<Model>{}),
+                     {.micro_inertia = 12.5e-6, .micro_inertia_scale = micro_inertia_scale});
   } else {
+    (void)micro_inertia_scale;
     return Continuum(make_model(std::type_identity<Model>{}));
   }
 }
@@ -59,14 +62,15 @@ Continuum make_continuum() {
 // last axis, the floor (lower face of the last axis) fixed, every side face a roller wall.
 template <class Sim>
 Sim soil_block(const grid::Grid<Sim::dim>& grid, const Vec<Sim::dim>& fill, int threads,
-               std::optional<double> flip_fraction = std::nullopt) {
+               std::optional<double> flip_fraction = std::nullopt,
+               double micro_inertia_scale = 1.0) {
   constexpr int dim = Sim::dim;
   SimulationParameters<dim> parameters;
   parameters.gravity = Vec<dim>::Zero();
   parameters.gravity[dim - 1] = -9.81;
   parameters.threads = threads;
   parameters.flip_fraction = flip_fraction;
-  Sim sim(grid, make_continuum<typename Sim::continuum_type>(), parameters);
+  Sim sim(grid, make_continuum<typename Sim::continuum_type>(micro_inertia_scale), parameters);
   const Vec<dim> origin = Vec<dim>::Zero();
   const auto seeding = particles::seed_box(grid, origin, fill, 2);
   sim.add_particles(seeding.positions, seeding.volume, corn_density, seeding.half_width);
