@@ -26,8 +26,15 @@ SCHEMES = ("MUSL", "FusedMUSL")
 POLAR = ("cosserat_drucker_prager", "cosserat_drucker_prager_j16")
 
 
+def require_binary(binary, option):
+    if not os.access(binary, os.X_OK):
+        sys.exit(f"polar_cost.py: {binary} not found; configure the build with {option} and "
+                 "build it (README, 'Benchmarks')")
+
+
 def step_ratios(build, rounds, core):
     binary = os.path.join(build, "benchmarks", "cosmpm_bench_simulation")
+    require_binary(binary, "-DCOSMPM_BUILD_BENCHMARKS=ON")
     pattern = "^step/linear/(Fused)?MUSL/(mohr_coulomb|" + "|".join(POLAR) + ")/1/"
     script = os.path.join(os.path.dirname(os.path.abspath(__file__)), "bench_interleaved.sh")
     out = subprocess.run([script, "-r", str(rounds), "-c", str(core), "-f", pattern,
@@ -62,6 +69,7 @@ def run_once(binary, core, polar, out):
 
 def run_ratios(build, rounds, core):
     binary = os.path.join(build, "examples", "example_03_flat_blade")
+    require_binary(binary, "-DCOSMPM_BUILD_EXAMPLES=ON")
     runs, steps = [], []
     with tempfile.TemporaryDirectory() as scratch:
         for round_number in range(rounds):
