@@ -38,10 +38,11 @@ void full_step(benchmark::State& state) {
 }
 
 // The polar step as the flat blade's polar default runs it (examples/03_flat_blade/case.hpp):
-// the micro-inertia 16 times the paper's, so its stable step is the p-wave bound's, as the
-// nonpolar step's (7.5e-5 against 8.0e-5 s), and the timed steps cover the same settling of the
-// block (plastic fraction 0.29 against Mohr-Coulomb's 0.25). At the paper's micro-inertia the
-// step is 2.8e-5 s: the 1000 steps end earlier in the settling, at a plastic fraction of 0.47.
+// the micro-inertia 16 times the paper's, so the rotational bound no longer sets the stable
+// step; the waves do, as in the nonpolar step (7.5e-5 against 8.0e-5 s: the skew shear wave,
+// G + Gc, is a little faster than the p-wave), and the timed steps cover the same settling of
+// the block (plastic fraction 0.29 against Mohr-Coulomb's 0.25). At the paper's micro-inertia
+// the step is 2.8e-5 s: the 1000 steps end earlier in the settling, 0.47 of the points plastic.
 inline constexpr double flat_blade_micro_inertia_scale = 16.0;
 template <class Scheme>
 void full_step_polar_default(benchmark::State& state) {
