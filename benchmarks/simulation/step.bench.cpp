@@ -24,10 +24,12 @@ using Elastic = material::LinearElastic<>;
 // and 1.2 m (step_support.hpp).
 template <class Kernel, class Scheme = integrator::USL,
           class Continuum = continuum::Classical<Elastic>, class Transfer = transfer::FlipBlend>
-auto make_block(int threads, std::optional<double> flip_fraction = std::nullopt) {
+auto make_block(int threads, std::optional<double> flip_fraction = std::nullopt,
+                double micro_inertia_scale = 1.0) {
   using Sim = Simulation<2, Kernel, Continuum, contact::SingleField, Scheme, Transfer>;
   const grid::Grid<2> grid(Vec<2>(0.0, 0.0), Vec<2>(1.2, 0.5), {120, 50});
-  return benchmarks::soil_block<Sim>(grid, Vec<2>(1.2, 0.35), threads, flip_fraction);
+  return benchmarks::soil_block<Sim>(grid, Vec<2>(1.2, 0.35), threads, flip_fraction,
+                                     micro_inertia_scale);
 }
 
 template <class Kernel, class Scheme = integrator::USL,
@@ -47,10 +49,8 @@ inline constexpr double flat_blade_micro_inertia_scale = 16.0;
 template <class Scheme>
 void full_step_polar_default(benchmark::State& state) {
   using Polar = continuum::Cosserat<material::CosseratDruckerPrager<>>;
-  using Sim = Simulation<2, shape::Linear, Polar, contact::SingleField, Scheme>;
-  const grid::Grid<2> grid(Vec<2>(0.0, 0.0), Vec<2>(1.2, 0.5), {120, 50});
-  auto sim = benchmarks::soil_block<Sim>(grid, Vec<2>(1.2, 0.35), static_cast<int>(state.range(0)),
-                                         std::nullopt, flat_blade_micro_inertia_scale);
+  auto sim = make_block<shape::Linear, Scheme, Polar>(static_cast<int>(state.range(0)),
+                                                      std::nullopt, flat_blade_micro_inertia_scale);
   benchmarks::time_full_steps(state, sim);
 }
 
