@@ -1,9 +1,11 @@
 // Bits of the step schemes, for comparing two trees: checksums of every particle's position,
-// velocity and stress after 300 steps of the benchmark's soil block (one thread), for each
-// scheme the step benchmarks time, with and without the fused schemes' records dropped at step
-// 150. Built and run against each tree by scripts/bits_check.sh: a change meant to give the
-// same results must leave every line alike.
+// velocity and stress after 300 steps of the benchmark's soil block, for each scheme the step
+// benchmarks time, with and without the fused schemes' records dropped at step 150, on the
+// threads given as the argument (default 1). Built and run against each tree by
+// scripts/bits_check.sh: a change meant to give the same results must leave every line alike,
+// and the lines must not depend on the thread count.
 #include <cstdio>
+#include <cstdlib>
 #include <cstring>
 
 #include "cosmpm/shape.hpp"
@@ -44,9 +46,9 @@ using Sim = Simulation<2, Kernel, Continuum, contact::SingleField, Integrator>;
 
 // drop: the particles taken for writing at step 150, which drops a fused scheme's records.
 template <class Sim>
-void run(const char* name, bool drop) {
+void run(const char* name, bool drop, int threads) {
   const grid::Grid<2> grid(Vec<2>(0.0, 0.0), Vec<2>(1.2, 0.5), {120, 50});
-  auto sim = benchmarks::soil_block<Sim>(grid, Vec<2>(1.2, 0.35), 1);
+  auto sim = benchmarks::soil_block<Sim>(grid, Vec<2>(1.2, 0.35), threads);
   const double dt = sim.time_step();
   for (int step = 0; step < 300; ++step) {
     if (drop && step == 150) (void)sim.particles();
@@ -57,17 +59,18 @@ void run(const char* name, bool drop) {
 
 }  // namespace
 
-int main() {
+int main(int argc, char** argv) {
+  const int threads = argc > 1 ? std::atoi(argv[1]) : 1;
   using Elastic = continuum::Classical<material::LinearElastic<>>;
   using MohrCoulomb = continuum::Classical<material::MohrCoulomb<>>;
   using Cosserat = continuum::Cosserat<material::CosseratDruckerPrager<>>;
   for (const bool drop : {false, true}) {
-    run<Sim<shape::Linear, Elastic, integrator::FusedUSL>>("fused-usl", drop);
-    run<Sim<shape::QuadraticBSpline, Elastic, integrator::FusedUSL>>("fused-usl-quad", drop);
-    run<Sim<shape::Linear, MohrCoulomb, integrator::FusedMUSL>>("fused-musl-mc", drop);
-    run<Sim<shape::Linear, Cosserat, integrator::FusedMUSL>>("fused-musl-co", drop);
-    run<Sim<shape::Linear, Elastic, integrator::USL>>("usl", drop);
-    run<Sim<shape::Linear, MohrCoulomb, integrator::MUSL>>("musl-mc", drop);
-    run<Sim<shape::Linear, Cosserat, integrator::MUSL>>("musl-co", drop);
+    run<Sim<shape::Linear, Elastic, integrator::FusedUSL>>("fused-usl", drop, threads);
+    run<Sim<shape::QuadraticBSpline, Elastic, integrator::FusedUSL>>("fused-usl-quad", drop, threads);
+    run<Sim<shape::Linear, MohrCoulomb, integrator::FusedMUSL>>("fused-musl-mc", drop, threads);
+    run<Sim<shape::Linear, Cosserat, integrator::FusedMUSL>>("fused-musl-co", drop, threads);
+    run<Sim<shape::Linear, Elastic, integrator::USL>>("usl", drop, threads);
+    run<Sim<shape::Linear, MohrCoulomb, integrator::MUSL>>("musl-mc", drop, threads);
+    run<Sim<shape::Linear, Cosserat, integrator::MUSL>>("musl-co", drop, threads);
   }
 }

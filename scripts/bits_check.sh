@@ -1,7 +1,8 @@
 #!/bin/bash
 # Whether the working tree's steps give the same bits as revision REV's (default HEAD): builds
 # scripts/bits_check.cpp against each (native, -O3, as the benchmarks and examples build) and
-# compares the checksums of every scheme the step benchmarks time. About a minute.
+# compares the checksums of every scheme the step benchmarks time, then the working tree's on two
+# threads against its own on one. About a minute.
 # usage: scripts/bits_check.sh [REV]
 set -euo pipefail
 rev=${1:-HEAD}
@@ -23,5 +24,13 @@ if diff "$work/old.txt" "$work/new.txt"; then
   echo "same bits as $rev: $(wc -l <"$work/new.txt") runs"
 else
   echo "bits differ from $rev (< $rev, > working tree)"
+  exit 1
+fi
+# The working tree's steps on two threads: the same bits as on one.
+OMP_NUM_THREADS=2 "$work/new.bin" 2 >"$work/new2.txt"
+if diff "$work/new.txt" "$work/new2.txt"; then
+  echo "same bits on two threads as on one"
+else
+  echo "bits differ between one thread and two (< one, > two)"
   exit 1
 fi
