@@ -66,7 +66,8 @@ int main(int argc, char** argv) {
   using Cosserat = continuum::Cosserat<material::CosseratDruckerPrager<>>;
   for (const bool drop : {false, true}) {
     run<Sim<shape::Linear, Elastic, integrator::FusedUSL>>("fused-usl", drop, threads);
-    run<Sim<shape::QuadraticBSpline, Elastic, integrator::FusedUSL>>("fused-usl-quad", drop, threads);
+    run<Sim<shape::QuadraticBSpline, Elastic, integrator::FusedUSL>>("fused-usl-quad", drop,
+                                                                     threads);
     run<Sim<shape::Linear, MohrCoulomb, integrator::FusedMUSL>>("fused-musl-mc", drop, threads);
     run<Sim<shape::Linear, Cosserat, integrator::FusedMUSL>>("fused-musl-co", drop, threads);
     run<Sim<shape::Linear, Elastic, integrator::USL>>("usl", drop, threads);

@@ -200,9 +200,15 @@ requires(Model::is_cosserat&& material::dimension_of<Model> == 2) class Cosserat
 
   // Zero nodal spin on the faces whose rotation is fixed.
   void apply_rotation_conditions(const grid::Grid<2>& grid, std::span<double> spin) const {
+    apply_rotation_conditions(grid, spin, 0, grid.node_count());
+  }
+  // The same on the nodes [first, last) only (a thread's share of the grid update).
+  void apply_rotation_conditions(const grid::Grid<2>& grid, std::span<double> spin, Index first,
+                                 Index last) const {
     for (int face = 0; face < 4; ++face) {
       if (!settings_.rotation_fixed[static_cast<std::size_t>(face)]) continue;
-      grid::for_each_face_node(grid, face / 2, face % 2 == 1, [&](Index n) { spin[n] = 0.0; });
+      grid::for_each_face_node_in(grid, face / 2, face % 2 == 1, first, last,
+                                  [&](Index n) { spin[static_cast<std::size_t>(n)] = 0.0; });
     }
   }
 

@@ -1,5 +1,6 @@
 #pragma once
 // Velocity boundary conditions on the faces of the grid box, applied to the nodes of each face.
+#include <algorithm>
 #include <array>
 #include <cmath>
 #include <string>
@@ -103,6 +104,26 @@ void for_each_face_node(const Grid<Dim>& grid, int axis, bool upper, F&& f) {
   }
 }
 
+// f(n), in increasing n, for every node n in [first, last) on the lower (upper = false) or upper
+// face normal to `axis`: a thread's share of a node pass (stages/grid_update.hpp) visits its own
+// face nodes without stepping through the others'. Nodes are numbered i + n_0 (j + n_1 k): the
+// face's nodes come in blocks of `inner` consecutive indices, one block every `outer`.
+template <int Dim, class F>
+void for_each_face_node_in(const Grid<Dim>& grid, int axis, bool upper, Index first, Index last,
+                           F&& f) {
+  Index inner = 1;
+  for (int d = 0; d < axis; ++d) inner *= grid.nodes(d);
+  const Index outer = inner * grid.nodes(axis);
+  const Index offset = inner * (upper ? grid.nodes(axis) - 1 : 0);
+  first = std::max(first, Index{0});
+  last = std::min(last, grid.node_count());
+  if (first >= last) return;
+  for (Index block = first / outer; block * outer < last; ++block) {
+    const Index begin = block * outer + offset;
+    for (Index n = std::max(begin, first); n < std::min(begin + inner, last); ++n) f(n);
+  }
+}
+
 // The face conditions on a nodal velocity field, face by face in face order, so a node on
 // several faces (a corner) takes them in the order of the faces. With `imposed` (one entry per
 // node, zeroed by the caller), each node's entry collects the components the conditions
@@ -121,6 +142,21 @@ void apply_boundary_conditions(const BoundaryConditions<Dim>& conditions, const 
       const unsigned components =
           BoundaryConditions<Dim>::apply(condition, axis, upper, velocity[node]);
       if (imposed != nullptr) (*imposed)[node] |= static_cast<unsigned char>(components);
+    });
+  }
+}
+
+// apply_boundary_conditions on the nodes [first, last) only, in the same order per node.
+template <int Dim>
+void apply_boundary_conditions(const BoundaryConditions<Dim>& conditions, const Grid<Dim>& grid,
+                               Vec<Dim>* velocity, Index first, Index last) {
+  for (int face = 0; face < 2 * Dim; ++face) {
+    const auto& condition = conditions[face];
+    if (condition.kind == BoundaryKind::free) continue;
+    const int axis = face / 2;
+    const bool upper = face % 2 == 1;
+    for_each_face_node_in(grid, axis, upper, first, last, [&](Index n) {
+      BoundaryConditions<Dim>::apply(condition, axis, upper, velocity[n]);
     });
   }
 }

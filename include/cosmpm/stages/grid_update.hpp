@@ -4,6 +4,7 @@
 #include <cmath>
 #include <cstddef>
 #include <span>
+#include <utility>
 #include <vector>
 
 #include "cosmpm/contact/concept.hpp"
@@ -142,6 +143,75 @@ NodeMomentumUpdate<Dim> node_momentum_update(Nodes& nodes, double dt, double dam
   return {dt, damping, nodes.force.data(), nodes.momentum.data(), nodes.velocity.data()};
 }
 
+// Whether the grid update applies the boundary conditions to each thread's share of the nodes
+// inside its node pass: where the contact law neither corrects the velocities nor reconciles
+// them with the conditions, and the continuum's rotation conditions can be applied to a share.
+// Every condition acts on one node's own values, so each node sees what the passes apart gave it;
+// the face nodes that no particle reaches keep the values the conditions left them.
+template <class State>
+inline constexpr bool conditions_in_shares = [] {
+  using Contact = decltype(std::declval<State&>().contact);
+  constexpr int Dim = State::dim;
+  if constexpr (contact::CorrectsVelocities<Contact, Dim> ||
+                contact::ReconcilesConditions<Contact, Dim>) {
+    return false;
+  } else if constexpr (State::rotational_dofs == 0) {
+    return true;
+  } else {
+    return requires(const typename State::continuum_type& c, const grid::Grid<Dim>& g,
+                    std::span<double> spin) {
+      c.apply_rotation_conditions(g, spin, Index{}, Index{});
+    };
+  }
+}();
+
+// apply_conditions to the start (momentum) and end velocities of the nodes [first, last).
+template <class State>
+void apply_conditions_in(State& s, Index first, Index last) {
+  auto& nodes = s.nodes;
+  grid::apply_boundary_conditions(s.boundary, s.grid, nodes.momentum.data(), first, last);
+  if constexpr (State::rotational_dofs > 0) {
+    s.continuum.apply_rotation_conditions(s.grid, nodes.spin_momentum, first, last);
+  }
+  grid::apply_boundary_conditions(s.boundary, s.grid, nodes.velocity.data(), first, last);
+  if constexpr (State::rotational_dofs > 0) {
+    s.continuum.apply_rotation_conditions(s.grid, nodes.spin, first, last);
+  }
+}
+
+// The accelerations of the nodes [first, last) and their records for the grid-to-particle map,
+// which reads each node's velocity and acceleration as one record.
+template <class State>
+COSMPM_ALWAYS_INLINE void write_gather_records(State& s, double inverse_dt, Index first,
+                                               Index last) {
+  constexpr int Dim = State::dim;
+  constexpr int R = State::rotational_dofs;
+  using Record = typename State::gather_record;
+  auto& nodes = s.nodes;
+  // Locals, as the momentum update's.
+  double* const gathered = s.gather.data();
+  const Vec<Dim>* const velocity = nodes.velocity.data();
+  const Vec<Dim>* const start_velocity = nodes.momentum.data();
+  Vec<Dim>* const acceleration = nodes.acceleration.data();
+  const double* const spin = nodes.spin.data();
+  const double* const start_spin = nodes.spin_momentum.data();
+  double* const spin_acceleration = nodes.spin_acceleration.data();
+  for (Index n = first; n < last; ++n) {
+    acceleration[n] = (velocity[n] - start_velocity[n]) * inverse_dt;
+    double* const record = gathered + n * Record::all;
+    for (int d = 0; d < Dim; ++d) {
+      record[Record::velocity + d] = velocity[n][d];
+      record[Record::acceleration + d] = acceleration[n][d];
+    }
+    for (int k = 0; k < R; ++k) {
+      const auto i = n * R + k;
+      spin_acceleration[i] = (spin[i] - start_spin[i]) * inverse_dt;
+      record[Record::spin + k] = spin[i];
+      record[Record::spin_acceleration + k] = spin_acceleration[i];
+    }
+  }
+}
+
 // update_grid; from_records: the node fields first taken from the particle-to-grid records
 // (nodes_from_records) in the same node pass, where contact neither adds forces nor corrects
 // the start velocity (map_and_update_grid checks).
@@ -168,6 +238,8 @@ void update_grid_pass(State& s, double dt) {
     s.contact.add_forces(view);
   }
   const double damping = s.parameters.damping;
+  s.gather.resize(static_cast<std::size_t>(Record::all * count));
+  const double shared_inverse_dt = 1.0 / dt;
   // The rotational rates of nodes [first_node, end_node) likewise, from their start spins in
   // spin_momentum (as rates when spin_is_rate, else as moments of momentum); a node without
   // mass takes zero rates. A loop of its own, on packs where one dof per node and no damping
@@ -248,41 +320,22 @@ void update_grid_pass(State& s, double dt) {
         update_node(n, inverse_mass, Vec<Dim>(update_node.momentum[n] * inverse_mass));
       }
       if constexpr (R > 0) update_rotations(share.first, share.last, /*spin_is_rate=*/false);
+      if constexpr (conditions_in_shares<State>) {
+        // No barrier and no serial pass between: each node's own values, in its thread.
+        apply_conditions_in(s, share.first, share.last);
+        write_gather_records(s, shared_inverse_dt, share.first, share.last);
+      }
     }
     if constexpr (from_records) records_read_and_zeroed(s, first * size, end * size);
+    if constexpr (conditions_in_shares<State>) return;
   }
   // Contact corrects the updated velocity, so the acceleration (and through FLIP the
   // particles) carries the step's impulse; boundary conditions come last and win.
   apply_conditions(s, nodes.momentum, nodes.spin_momentum);
   correct_and_apply_conditions(s, nodes.velocity, nodes.spin, dt, contact::Phase::end_velocity);
-  // The grid-to-particle pass reads each node's velocity and acceleration as one record.
-  s.gather.resize(static_cast<std::size_t>(Record::all * count));
-  double* const gathered = s.gather.data();
-  const double shared_inverse_dt = 1.0 / dt;
   COSMPM_OMP_PARALLEL(s.threads, end - first) {
     const Share share = node_share(s.node_range);
-    // Locals, as the momentum update's.
-    const double inverse_dt = shared_inverse_dt;
-    const Vec<Dim>* const velocity = nodes.velocity.data();
-    const Vec<Dim>* const start_velocity = nodes.momentum.data();
-    Vec<Dim>* const acceleration = nodes.acceleration.data();
-    const double* const spin = nodes.spin.data();
-    const double* const start_spin = nodes.spin_momentum.data();
-    double* const spin_acceleration = nodes.spin_acceleration.data();
-    for (Index n = share.first; n < share.last; ++n) {
-      acceleration[n] = (velocity[n] - start_velocity[n]) * inverse_dt;
-      double* const record = gathered + n * Record::all;
-      for (int d = 0; d < Dim; ++d) {
-        record[Record::velocity + d] = velocity[n][d];
-        record[Record::acceleration + d] = acceleration[n][d];
-      }
-      for (int k = 0; k < R; ++k) {
-        const auto i = n * R + k;
-        spin_acceleration[i] = (spin[i] - start_spin[i]) * inverse_dt;
-        record[Record::spin + k] = spin[i];
-        record[Record::spin_acceleration + k] = spin_acceleration[i];
-      }
-    }
+    write_gather_records(s, shared_inverse_dt, share.first, share.last);
   }
 }
 
