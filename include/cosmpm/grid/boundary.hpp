@@ -124,41 +124,34 @@ void for_each_face_node_in(const Grid<Dim>& grid, int axis, bool upper, Index fi
   }
 }
 
-// The face conditions on a nodal velocity field, face by face in face order, so a node on
-// several faces (a corner) takes them in the order of the faces. With `imposed` (one entry per
-// node, zeroed by the caller), each node's entry collects the components the conditions
-// imposed (BoundaryConditions::apply).
+// The face conditions on the nodes [first, last) of a nodal velocity field, face by face in face
+// order, so a node on several faces (a corner) takes them in the order of the faces. With
+// `imposed` (one entry per node, zeroed by the caller), each node's entry collects the
+// components the conditions imposed (BoundaryConditions::apply).
 template <int Dim>
 void apply_boundary_conditions(const BoundaryConditions<Dim>& conditions, const Grid<Dim>& grid,
-                               std::vector<Vec<Dim>>& velocity,
-                               std::vector<unsigned char>* imposed = nullptr) {
-  for (int face = 0; face < 2 * Dim; ++face) {
-    const auto& condition = conditions[face];
-    if (condition.kind == BoundaryKind::free) continue;
-    const int axis = face / 2;
-    const bool upper = face % 2 == 1;
-    for_each_face_node(grid, axis, upper, [&](Index n) {
-      const auto node = static_cast<std::size_t>(n);
-      const unsigned components =
-          BoundaryConditions<Dim>::apply(condition, axis, upper, velocity[node]);
-      if (imposed != nullptr) (*imposed)[node] |= static_cast<unsigned char>(components);
-    });
-  }
-}
-
-// apply_boundary_conditions on the nodes [first, last) only, in the same order per node.
-template <int Dim>
-void apply_boundary_conditions(const BoundaryConditions<Dim>& conditions, const Grid<Dim>& grid,
-                               Vec<Dim>* velocity, Index first, Index last) {
+                               Vec<Dim>* velocity, Index first, Index last,
+                               unsigned char* imposed = nullptr) {
   for (int face = 0; face < 2 * Dim; ++face) {
     const auto& condition = conditions[face];
     if (condition.kind == BoundaryKind::free) continue;
     const int axis = face / 2;
     const bool upper = face % 2 == 1;
     for_each_face_node_in(grid, axis, upper, first, last, [&](Index n) {
-      BoundaryConditions<Dim>::apply(condition, axis, upper, velocity[n]);
+      const unsigned components =
+          BoundaryConditions<Dim>::apply(condition, axis, upper, velocity[n]);
+      if (imposed != nullptr) imposed[n] |= static_cast<unsigned char>(components);
     });
   }
+}
+
+// The same on every node of the grid.
+template <int Dim>
+void apply_boundary_conditions(const BoundaryConditions<Dim>& conditions, const Grid<Dim>& grid,
+                               std::vector<Vec<Dim>>& velocity,
+                               std::vector<unsigned char>* imposed = nullptr) {
+  apply_boundary_conditions(conditions, grid, velocity.data(), 0, grid.node_count(),
+                            imposed != nullptr ? imposed->data() : nullptr);
 }
 
 }  // namespace cosmpm::grid
