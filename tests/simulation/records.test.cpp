@@ -5,7 +5,9 @@
 // scheme uses (a writer twice, without a reader between) against the same stage run once.
 #include <doctest/doctest.h>
 
+#include <algorithm>
 #include <cmath>
+#include <cstddef>
 #include <string>
 #include <utility>
 #include <vector>
@@ -38,6 +40,21 @@ bool zero_outside_extent(const Sim& sim) {
   return true;
 }
 
+// Every double of the fused pass's second-half records is +0 but those still pending (the node
+// pass that reads the records takes them, in place or added to the first half's).
+template <class Sim>
+bool upper_zero_unless_pending(const Sim& sim) {
+  const auto& s = sim.engine();
+  const Index first = s.upper_end > s.upper_first ? s.upper_first * s.upper_width : 0;
+  const Index end = s.upper_end > s.upper_first ? s.upper_end * s.upper_width : 0;
+  for (Index i = 0; i < static_cast<Index>(s.scatter_upper.size()); ++i) {
+    if (i >= first && i < end) continue;
+    const double x = s.scatter_upper[static_cast<std::size_t>(i)];
+    if (x != 0.0 || std::signbit(x)) return false;
+  }
+  return true;
+}
+
 // Each step's stages one by one (MUSL's, with USF's force map and the fused schemes' passes in
 // between), the invariant checked after each.
 template <class Continuum>
@@ -49,6 +66,7 @@ void check_invariant_through_stages(const std::string& label) {
   const auto check = [&](const char* stage) {
     INFO(stage);
     CHECK(zero_outside_extent(sim));
+    CHECK(upper_zero_unless_pending(sim));
   };
   for (int i = 0; i < 20; ++i) {
     sim.map_to_grid(true);
@@ -121,6 +139,67 @@ TEST_CASE("node records: the dirty extent's bookkeeping") {
   records_written_within(b, 16, 24);  // a pass that noted where it wrote
   read(16, 24);
   CHECK(b.scatter_dirty.size() == 0);
+}
+
+TEST_CASE("node records: the second half's records completed, read in place where only it wrote") {
+  using cosmpm::stages::detail::complete_records;
+  using cosmpm::stages::detail::PendingUpper;
+  constexpr Index width = 2;
+  constexpr Index nodes = 12;
+  // The halves' nodes in the usual order (the first half below), overlapping, the other way
+  // round, apart, and no pending records at all.
+  struct Case {
+    NodeRange lower;
+    NodeRange upper;
+  };
+  for (const Case c : {Case{{1, 7}, {5, 11}}, Case{{5, 12}, {0, 6}}, Case{{0, 4}, {8, 12}},
+                       Case{{2, 9}, {0, 0}}}) {
+    for (Index first = 0; first <= nodes; ++first) {
+      for (Index last = first; last <= nodes; ++last) {
+        CAPTURE(c.lower.first);
+        CAPTURE(c.upper.first);
+        CAPTURE(first);
+        CAPTURE(last);
+        constexpr auto size = static_cast<std::size_t>(width * nodes);
+        std::vector<double> lower(size, 0.0);
+        std::vector<double> upper(size, 0.0);
+        for (std::size_t i = 0; i < size; ++i) {
+          const auto n = static_cast<Index>(i) / width;
+          if (n >= c.lower.first && n < c.lower.end) lower[i] = 1.0 + 0.1 * static_cast<double>(i);
+          if (n >= c.upper.first && n < c.upper.end) upper[i] = 0.3 + 0.7 * static_cast<double>(i);
+        }
+        std::vector<double> sum(size);
+        for (std::size_t i = 0; i < size; ++i) sum[i] = lower[i] + upper[i];
+        const PendingUpper pending{upper.data(), c.upper.first, c.upper.end, width, c.lower};
+        Index next = first;
+        bool complete = true;
+        for (const auto run : complete_records(pending, lower.data(), first, last)) {
+          CHECK(run.first == next);
+          CHECK(run.last > run.first);
+          next = run.last;
+          for (Index n = run.first; n < run.last; ++n) {
+            const bool only_upper =
+                n >= c.upper.first && n < c.upper.end && !(n >= c.lower.first && n < c.lower.end);
+            CHECK(run.records == (only_upper ? upper.data() : lower.data()));
+            for (Index k = 0; k < width; ++k) {
+              const auto i = static_cast<std::size_t>(n * width + k);
+              complete &=
+                  same_bits(std::vector<double>{run.records[i]}, std::vector<double>{sum[i]});
+            }
+          }
+        }
+        CHECK(next == std::max(first, last));
+        CHECK(complete);
+        // What was added is zeroed in the second half's records; what is read in place stays
+        // for its reader to zero.
+        for (Index n = first; n < last; ++n) {
+          const bool both =
+              n >= c.upper.first && n < c.upper.end && n >= c.lower.first && n < c.lower.end;
+          if (both) CHECK(upper[static_cast<std::size_t>(n * width)] == 0.0);
+        }
+      }
+    }
+  }
 }
 
 TEST_CASE("node records: zero outside the dirty extent after every stage") {

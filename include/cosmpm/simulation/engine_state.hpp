@@ -88,13 +88,19 @@ struct EngineState {
   NodeRange prescattered_nodes{0, 0};  // the nodes its stencils reach
   // Its second half's records, upper_width doubles per node, pending in the nodes
   // [upper_first, upper_end) until the node pass that reads the records adds them (zero
-  // elsewhere and after); and the threads that ran the pass last.
+  // elsewhere and after); the nodes its first half's records may be nonzero in; and the
+  // threads that ran the pass last.
   std::vector<double> scatter_upper;
   Index upper_first = 0;
   Index upper_end = 0;
   int upper_width = 0;
+  NodeRange lower_nodes{0, 0};
   int fused_team = 1;
   std::vector<double> gather;  // node records of the grid-to-particle maps
+  // Stage 4a's node records where velocity and rotational rates are copied into records (3 doubles
+  // per node in 2D); apart from `gather` (8), so that neither thread's records lie in the lines
+  // the other thread's node share writes in the grid update.
+  std::vector<double> rate_gather;
   // Particle positions in cell units at the last map_to_grid: the stencils of the step.
   std::vector<Vec<Dim>> stencil_cells;
   std::vector<rates_type> particle_rates;  // MUSL/USF: between rates and stress update

@@ -147,7 +147,7 @@ NodeRange note_scattered_nodes(State& s, const FusedHalfReport& all) {
 // Runs report = visit(first, last, records, report) over the two halves of the particles, on
 // up to two threads: the first half into `lower` (zeroed, in s.scatter, C doubles per node), the
 // second into s.scatter_upper, left pending for the node pass that reads the records
-// (particle_to_grid.hpp, add_pending_upper). The cut is a multiple of 64 (stress_update.hpp's
+// (records.hpp, complete_records). The cut is a multiple of 64 (stress_update.hpp's
 // runs, and a whole number of packs), so each half starts a run. visit takes the report by
 // value, so it stays in registers: through a reference, every particle's Index stores (its
 // block) could alias it and the pass stored it to memory per particle (fused USL +1.6 %).
@@ -183,6 +183,7 @@ FusedHalfReport over_halves(State& s, double* const lower, Visit&& visit) {
     s.upper_first = nodes.first;
     s.upper_end = nodes.end;
     s.upper_width = C;
+    s.lower_nodes = scattered_nodes(s, reports[0]);
   }
   FusedHalfReport all = reports[0];
   all.first_outside = std::min(all.first_outside, second.first_outside);

@@ -307,17 +307,25 @@ void update_grid_pass(State& s, double dt) {
       const auto update_node = node_momentum_update<Dim>(nodes, dt, damping);
       const double* const mass = nodes.mass.data();
       const double empty_mass = empty;
-      if constexpr (from_records) add_pending_upper(pending, scattered, share.first, share.last);
-      for (Index n = share.first; n < share.last; ++n) {
-        // The fields written here are read back at once, from the cache: one node pass less.
-        if constexpr (from_records) node_from_record<true>(s, n, scattered + n * size);
-        const double m = mass[n];
-        if (m <= empty_mass) {
-          update_node.clear(n);
-          continue;
+      const auto update_nodes = [&](Index run_first, Index run_last,
+                                    double* records) COSMPM_INLINE_LAMBDA {
+        for (Index n = run_first; n < run_last; ++n) {
+          // The fields written here are read back at once, from the cache: one node pass less.
+          if constexpr (from_records) node_from_record<true>(s, n, records + n * size);
+          const double m = mass[n];
+          if (m <= empty_mass) {
+            update_node.clear(n);
+            continue;
+          }
+          const double inverse_mass = 1.0 / m;  // one division per node instead of 2 Dim
+          update_node(n, inverse_mass, Vec<Dim>(update_node.momentum[n] * inverse_mass));
         }
-        const double inverse_mass = 1.0 / m;  // one division per node instead of 2 Dim
-        update_node(n, inverse_mass, Vec<Dim>(update_node.momentum[n] * inverse_mass));
+      };
+      if constexpr (from_records) {
+        for (const RecordRun run : complete_records(pending, scattered, share.first, share.last))
+          update_nodes(run.first, run.last, run.records);
+      } else {
+        update_nodes(share.first, share.last, scattered);
       }
       if constexpr (R > 0) update_rotations(share.first, share.last, /*spin_is_rate=*/false);
       if constexpr (conditions_in_shares<State>) {

@@ -288,13 +288,15 @@ void nodes_from_records(State& s, bool with_forces) {
   // updates next, where one thread writing them all cost the two-thread step 14-22 us.
   COSMPM_OMP_PARALLEL(s.threads, range.size()) {
     const Share share = node_share(range);
-    detail::add_pending_upper(pending, scattered, share.first, share.last);
-    if (with_forces) {
-      for (Index n = share.first; n < share.last; ++n)
-        detail::node_from_record<true>(s, n, scattered + n * size);
-    } else {
-      for (Index n = share.first; n < share.last; ++n)
-        detail::node_from_record<false>(s, n, scattered + n * size);
+    for (const detail::RecordRun run :
+         detail::complete_records(pending, scattered, share.first, share.last)) {
+      if (with_forces) {
+        for (Index n = run.first; n < run.last; ++n)
+          detail::node_from_record<true>(s, n, run.records + n * size);
+      } else {
+        for (Index n = run.first; n < run.last; ++n)
+          detail::node_from_record<false>(s, n, run.records + n * size);
+      }
     }
   }
   detail::records_read_and_zeroed(s, range.first * size, range.end * size);

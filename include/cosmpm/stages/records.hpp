@@ -8,6 +8,7 @@
 // Any writer and any reader may run in any order: what no reader zeroed stays in the extent
 // and is cleared by the next writer that needs it.
 #include <algorithm>
+#include <array>
 #include <string>
 
 #include "cosmpm/core/error.hpp"
@@ -59,18 +60,21 @@ struct PendingUpper {
   Index first = 0;
   Index end = 0;
   Index width = 0;
+  NodeRange lower{0, 0};  // outside it the first half's records are zero
 };
 
 // Takes the pending second-half records for a node pass over records of `width` doubles.
 template <class State>
 PendingUpper take_pending_upper(State& s, Index width) {
-  const PendingUpper pending{s.scatter_upper.data(), s.upper_first, s.upper_end, width};
+  const PendingUpper pending{s.scatter_upper.data(), s.upper_first, s.upper_end, width,
+                             s.lower_nodes};
   if (pending.end > pending.first) {
     require(s.upper_width == width, "a node pass read " + std::to_string(width) +
                                         " doubles per node where the fused pass wrote " +
                                         std::to_string(s.upper_width));
   }
   s.upper_first = s.upper_end = 0;
+  s.lower_nodes = {0, 0};
   return pending;
 }
 
@@ -87,6 +91,51 @@ inline void add_pending_upper(const PendingUpper& pending, double* records, Inde
   }
 }
 
+// A run of nodes [first, last) whose complete records lie in `records` (record n at
+// records + n * width), which the reader zeroes after reading.
+struct RecordRun {
+  Index first;
+  Index last;
+  double* records;
+};
+
+// The runs of complete_records, in node order.
+struct RecordRuns {
+  std::array<RecordRun, 5> runs;  // cut at most at four bounds
+  int count = 0;
+  const RecordRun* begin() const { return runs.data(); }
+  const RecordRun* end() const { return runs.data() + count; }
+};
+
+// The records of the nodes [first, last) completed, as add_pending_upper, where both halves
+// wrote; where only the second half did, its own records are complete as they are (the first
+// half's are +0, and +0 + x is x: a sum that starts at +0 is never -0) and are read there, in
+// place of a pass that adds them (on two threads the thread whose nodes the second half
+// reaches did that pass alone). Returns where each run's records are.
+inline RecordRuns complete_records(const PendingUpper& pending, double* records, Index first,
+                                   Index last) {
+  RecordRuns runs;
+  const std::array<Index, 4> bounds{pending.first, pending.end, pending.lower.first,
+                                    pending.lower.end};
+  for (Index n = first; n < last;) {
+    Index next = last;
+    for (const Index bound : bounds) {
+      if (bound > n && bound < next) next = bound;
+    }
+    const bool upper = n >= pending.first && n < pending.end;
+    const bool lower = n >= pending.lower.first && n < pending.lower.end;
+    if (upper && lower) add_pending_upper(pending, records, n, next);
+    double* const source = upper && !lower ? pending.upper : records;
+    if (runs.count > 0 && runs.runs[runs.count - 1].records == source) {
+      runs.runs[runs.count - 1].last = next;
+    } else {
+      runs.runs[runs.count++] = {n, next, source};
+    }
+    n = next;
+  }
+  return runs;
+}
+
 // Drops pending second-half records: whatever clears the records starts afresh.
 template <class State>
 void discard_pending_upper(State& s) {
@@ -95,6 +144,7 @@ void discard_pending_upper(State& s) {
     std::fill(at(s.upper_first), at(s.upper_end), 0.0);
   }
   s.upper_first = s.upper_end = 0;
+  s.lower_nodes = {0, 0};
 }
 
 }  // namespace cosmpm::stages::detail

@@ -101,21 +101,22 @@ void velocities_from_remap(State& s, double* records, double dt) {
   const PendingUpper pending = take_pending_upper(s, C);
   COSMPM_OMP_PARALLEL(s.threads, range.size()) {
     const Share share = node_share(range);  // the node loops' static shares
-    add_pending_upper(pending, records, share.first, share.last);
     // Locals: the region's shared variables are read through a pointer, reloaded per node.
     const double empty_mass = empty;
     const double* const mass = nodes.mass.data();
     Vec<Dim>* const velocity = nodes.velocity.data();
     double* const spin = nodes.spin.data();
-    for (Index n = share.first; n < share.last; ++n) {
-      double* const record = records + n * C;
-      if (mass[n] <= empty_mass) {
-        velocity[n].setZero();
-      } else {
-        velocity[n] = nodal_momentum(s, n, record, record + Dim + R) / mass[n];
+    for (const RecordRun run : complete_records(pending, records, share.first, share.last)) {
+      for (Index n = run.first; n < run.last; ++n) {
+        double* const record = run.records + n * C;
+        if (mass[n] <= empty_mass) {
+          velocity[n].setZero();
+        } else {
+          velocity[n] = nodal_momentum(s, n, record, record + Dim + R) / mass[n];
+        }
+        for (int k = 0; k < R; ++k) spin[n * R + k] = record[Dim + k];  // divided below
+        std::fill(record, record + C, 0.0);  // for the next writer (stages/records.hpp)
       }
-      for (int k = 0; k < R; ++k) spin[n * R + k] = record[Dim + k];  // divided below
-      std::fill(record, record + C, 0.0);  // for the next writer (stages/records.hpp)
     }
     if constexpr (R > 0) spins_from_momenta<R>(nodes, share.first * R, share.last * R, empty);
   }

@@ -159,7 +159,8 @@ COSMPM_ALWAYS_INLINE void rates_from_grid(State& s, Index p,
 
 namespace detail {
 // The node records stage 4a gathers from: the velocities themselves for a classical continuum
-// (laid out as the records, no copy), else velocity and rotational rates copied into s.gather.
+// (laid out as the records, no copy), else velocity and rotational rates copied into
+// s.rate_gather.
 template <class State>
 const double* rate_records(State& s, const std::vector<Vec<State::dim>>& node_velocity,
                            const std::vector<double>& node_spin, const char* where) {
@@ -179,14 +180,15 @@ const double* rate_records(State& s, const std::vector<Vec<State::dim>>& node_ve
     static_assert(Record::velocity == 0);
     return node_velocity.data()->data();
   } else {
-    s.gather.resize(static_cast<std::size_t>(Record::all * nodes));
+    s.rate_gather.resize(static_cast<std::size_t>(size * nodes));
     const NodeRange range = s.node_range;             // the stencils lie in it
     COSMPM_OMP_PARALLEL_FOR(s.threads, range.size())  // the node loops' static shares
     for (Index n = range.first; n < range.end; ++n) {
-      for (int d = 0; d < Dim; ++d) s.gather[n * size + Record::velocity + d] = node_velocity[n][d];
-      for (int k = 0; k < R; ++k) s.gather[n * size + Record::spin + k] = node_spin[n * R + k];
+      double* const record = s.rate_gather.data() + n * size;
+      for (int d = 0; d < Dim; ++d) record[Record::velocity + d] = node_velocity[n][d];
+      for (int k = 0; k < R; ++k) record[Record::spin + k] = node_spin[n * R + k];
     }
-    return s.gather.data();
+    return s.rate_gather.data();
   }
 }
 
