@@ -87,7 +87,7 @@ struct EngineState {
   bool prescattered = false;
   NodeRange prescattered_nodes{0, 0};  // the nodes its stencils reach
   // Its second half's records, upper_width doubles per node, pending in the nodes
-  // [upper_first, upper_end) until the node pass that reads the records adds them (zero
+  // [upper_first, upper_end) until the node pass that reads them completes them (zero
   // elsewhere and after); the nodes its first half's records may be nonzero in; and the
   // threads that ran the pass last.
   std::vector<double> scatter_upper;

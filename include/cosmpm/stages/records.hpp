@@ -53,8 +53,8 @@ void records_read_and_zeroed(State& s, Index first, Index end) {
 }
 
 // The fused pass's second-half records not yet added (stages/fused_pass.hpp, over_halves):
-// the node pass that reads the records adds them, in its own thread's nodes, so no thread
-// adds them all alone between the passes.
+// the node pass that reads the records completes them in its own thread's nodes
+// (complete_records), so no thread adds them all alone between the passes.
 struct PendingUpper {
   double* upper = nullptr;
   Index first = 0;
