@@ -26,12 +26,11 @@
 //   build/release/benchmarks/cosmpm_bench_host --benchmark_repetitions=5
 #include <benchmark/benchmark.h>
 
+#include <atomic>
 #include <cstddef>
 #include <vector>
 
-#if defined(_OPENMP)
-#include <omp.h>
-#endif
+#include "cosmpm/core/parallel.hpp"
 
 namespace {
 
@@ -99,12 +98,8 @@ void cache_halves(benchmark::State& state, bool swapped) {
 #pragma omp parallel num_threads(threads)
 #endif
     {
-      int thread = 0;
-      int team = 1;
-#if defined(_OPENMP)
-      thread = omp_get_thread_num();
-      team = omp_get_num_threads();
-#endif
+      const int thread = cosmpm::current_thread();
+      const int team = cosmpm::current_team_size();
       const long half = swapped ? (thread + pass) % team : thread;
       const long first = n * half / team, last = n * (half + 1) / team;
       double* const x = a.data();
@@ -120,8 +115,61 @@ void cache_halves(benchmark::State& state, bool swapped) {
   state.counters["threads"] = threads;
 }
 
+// What starting and ending a parallel region costs, against handing work to a thread that is
+// already running. The engine opens two (fused USL) to five (fused MUSL, Cosserat) regions per
+// step; under libgomp each costs two futex wakes (the release of the team and the barrier at
+// its end, made by whichever thread arrives last, whether or not the other one sleeps), and a
+// system call costs about 1 us on this VM (docs/performance.md, "What a parallel region
+// costs"). fork_join/omp_region: an empty `omp parallel` of `threads`; fork_join/spin_handover:
+// inside one region, thread 0 hands a token to thread 1 and waits for it back, through one
+// atomic each way: the floor a team that stays between the passes would pay per pass.
+void omp_region(benchmark::State& state) {
+  const int threads = static_cast<int>(state.range(0));
+  long entered = 0;
+  for (auto _ : state) {
+#if defined(_OPENMP)
+#pragma omp parallel num_threads(threads) reduction(+ : entered)
+#endif
+    { entered += 1; }
+  }
+  benchmark::DoNotOptimize(entered);
+  state.SetItemsProcessed(state.iterations());
+  state.counters["threads"] = threads;
+  state.counters["us_per_region"] =
+      benchmark::Counter(static_cast<double>(state.iterations()) * 1e-6,
+                         benchmark::Counter::kIsRate | benchmark::Counter::kInvert);
+}
+
+void spin_handover(benchmark::State& state) {
+  constexpr long handovers = 100000;  // per benchmark iteration
+  std::atomic<long> token{0};
+  for (auto _ : state) {
+    token.store(0, std::memory_order_relaxed);
+#if defined(_OPENMP)
+#pragma omp parallel num_threads(2)
+#endif
+    {
+      const int thread = cosmpm::current_thread();
+      const int team = cosmpm::current_team_size();
+      // Thread 0 moves the token to odd values, thread 1 to even ones; alone, a thread does both.
+      for (long k = 0; k < 2 * handovers; ++k) {
+        if (team > 1 && (k % 2) != thread) continue;
+        while (token.load(std::memory_order_acquire) != k) {
+        }
+        token.store(k + 1, std::memory_order_release);
+      }
+    }
+  }
+  state.SetItemsProcessed(state.iterations() * handovers);
+  state.counters["us_per_handover"] =
+      benchmark::Counter(static_cast<double>(state.iterations() * handovers) * 1e-6,
+                         benchmark::Counter::kIsRate | benchmark::Counter::kInvert);
+}
+
 }  // namespace
 
+BENCHMARK(omp_region)->Name("fork_join/omp_region")->Arg(1)->Arg(2)->UseRealTime();
+BENCHMARK(spin_handover)->Name("fork_join/spin_handover")->UseRealTime();
 BENCHMARK_CAPTURE(cache_halves, own, false)
     ->Name("host/cache_halves")
     ->Arg(1)

@@ -1,38 +1,29 @@
 #pragma once
-#include <algorithm>
-
-#include "cosmpm/core/types.hpp"
 // OpenMP without warnings when it is off: loops compile serially and stay correct.
+//
+// Regions and loops run on a team only when one pays: more than one thread asked for and at
+// least cosmpm::parallel_threshold items (a team's start-up and barrier cost more than they
+// save on less, and far more on a loaded machine). Otherwise they run on the calling thread
+// without entering the OpenMP runtime at all: libgomp makes a futex system call at the end of
+// every region, even a team of one, and a system call costs about 1 us on this VM, 1-1.5 % of
+// a one-thread step (docs/performance.md, "What a parallel region costs").
+//
+// Iterations are split in equal contiguous parts, thread t always taking the t-th (OpenMP
+// `schedule(static)`, static_share below), so a thread touches the same particles and nodes in
+// every pass of a step and of the next one: on this VM a cache line written on one vCPU and
+// read on the other costs about twice a line read where it was written, and handing out
+// chunks as threads come free (`schedule(dynamic)`, used up to 2026-12-03) moved most of the
+// step's data between them every pass, so that two threads ran the step slower than one
+// (docs/performance.md, "Two threads and the host"). Every loop run so has independent
+// iterations, so results do not depend on which thread ran which part.
+#include <algorithm>
+#include <atomic>
+
+#include "cosmpm/core/compiler.hpp"
+#include "cosmpm/core/types.hpp"
+
 #if defined(_OPENMP)
 #include <omp.h>
-#define COSMPM_PRAGMA(x) _Pragma(#x)
-// Loops over fewer than cosmpm::parallel_threshold items run on one thread: a team's
-// start-up and barrier cost more than they save, and far more on a loaded machine.
-// Iterations are split in equal contiguous parts, thread t always taking the t-th (OpenMP
-// `schedule(static)`), so a thread touches the same particles and nodes in every pass of a
-// step and of the next one: on this VM a cache line written on one vCPU and read on the other
-// costs about twice a line read where it was written, and handing out chunks as threads come
-// free (`schedule(dynamic)`, used up to 2026-12-03) moved most of the step's data between them
-// every pass, so that two threads ran the step slower than one (docs/performance.md, "Two
-// threads and the host"). Every loop these macros serve has independent iterations, so
-// results do not depend on which thread ran which part.
-#define COSMPM_OMP_PARALLEL_FOR(threads, work)                                       \
-  COSMPM_PRAGMA(omp parallel for schedule(static) num_threads(threads) if ((work) >= \
-                                                                         cosmpm::parallel_threshold))
-// The same loop with thread-private copies of the listed Index variables, combined by min at
-// the end: each thread records the first particle that failed a check in a register, with
-// no lock and no call inside the loop (a call there makes the compiler reload every array
-// pointer per particle).
-#define COSMPM_OMP_PARALLEL_FOR_MIN(threads, work, ...)                              \
-  COSMPM_PRAGMA(omp parallel for schedule(static) num_threads(threads) if ((work) >= \
-                                                                         cosmpm::parallel_threshold) reduction(min : __VA_ARGS__))
-// A team for a region that splits its work itself (static_share below).
-#define COSMPM_OMP_PARALLEL(threads, work) \
-  COSMPM_PRAGMA(omp parallel num_threads(threads) if ((work) >= cosmpm::parallel_threshold))
-#else
-#define COSMPM_OMP_PARALLEL_FOR(threads, work)
-#define COSMPM_OMP_PARALLEL_FOR_MIN(threads, work, ...)
-#define COSMPM_OMP_PARALLEL(threads, work)
 #endif
 
 namespace cosmpm {
@@ -80,6 +71,55 @@ inline Share static_share(Index count) {
   const Index extra = count % team;  // the first `extra` threads take one more
   const Index first = thread * base + std::min(thread, extra);
   return {first, first + base + (thread < extra ? 1 : 0)};
+}
+
+// Whether work of `work` items runs on a team of `threads` (see the top of this header).
+inline bool runs_on_team(int threads, long work) {
+  return threads > 1 && work >= parallel_threshold;
+}
+
+namespace detail {
+// The body of a region as one function, called by every thread of a team or by the calling
+// thread alone: the same machine code either way, as OpenMP's outlined region function is.
+// Inlined into each path, the compiler contracted multiply-adds differently there (GCC 12,
+// -march=native), and results could have depended on the thread count.
+template <class Body>
+[[gnu::noinline]] void run_region_body(Body& body) {
+  body();
+}
+}  // namespace detail
+
+// body() once by every thread of a team of `threads` when runs_on_team, each splitting the
+// work itself (static_share); else once on the calling thread, outside the runtime.
+template <class Body>
+COSMPM_ALWAYS_INLINE void parallel_region([[maybe_unused]] int threads, [[maybe_unused]] long work,
+                                          Body&& body) {
+#if defined(_OPENMP)
+  if (runs_on_team(threads, work)) {
+#pragma omp parallel num_threads(threads)
+    detail::run_region_body(body);
+    return;
+  }
+#endif
+  detail::run_region_body(body);
+}
+
+// body(i) for i in [0, count), split as schedule(static) where parallel_region runs a team.
+template <class Body>
+COSMPM_ALWAYS_INLINE void parallel_for(int threads, Index count, Body&& body) {
+  parallel_region(threads, count, [&] {
+    const Share share = static_share(count);
+    for (Index i = share.first; i < share.last; ++i) body(i);
+  });
+}
+
+// shared = min(shared, mine), from any thread of a team: how a region's threads combine the
+// first particle each found failing a check (exact, and independent of the order).
+inline void combine_min(Index& shared, Index mine) {
+  std::atomic_ref<Index> ref(shared);
+  Index seen = ref.load(std::memory_order_relaxed);
+  while (mine < seen && !ref.compare_exchange_weak(seen, mine, std::memory_order_relaxed)) {
+  }
 }
 
 }  // namespace cosmpm

@@ -105,17 +105,13 @@ class BlockScheduler {
     Index first_invalid = count;
     Index first_misplaced = count;
     int team = 1;
-#if defined(_OPENMP)
-#pragma omp parallel num_threads(threads) if (count >= cosmpm::parallel_threshold) \
-    reduction(min                                                                  \
-              : first_invalid, first_misplaced) reduction(max                      \
-                                                          : team)
-#endif
-    {
+    parallel_region(threads, count, [&] {
       const int thread = current_thread();
-      team = current_team_size();
+      const int size = current_team_size();
+      if (thread == 0) team = size;
+      Index invalid = count, misplaced = count;  // this thread's firsts
       for (const auto& blocks : colour_blocks_) {
-        const auto [first, last] = share_of(blocks, thread, team);
+        const auto [first, last] = share_of(blocks, thread, size);
         for (Index b = first; b < last; ++b) {
           const Index block = blocks[static_cast<std::size_t>(b)];
           for (Index i = start[block]; i < start[block + 1]; ++i) {
@@ -125,9 +121,9 @@ class BlockScheduler {
             } else {
               const Visit visit = f(p);
               if (visit == Visit::invalid_stencil) [[unlikely]]
-                first_invalid = std::min(first_invalid, p);
+                invalid = std::min(invalid, p);
               if (visit == Visit::misplaced) [[unlikely]]
-                first_misplaced = std::min(first_misplaced, p);
+                misplaced = std::min(misplaced, p);
             }
           }
         }
@@ -135,7 +131,9 @@ class BlockScheduler {
 #pragma omp barrier
 #endif
       }
-    }
+      combine_min(first_invalid, invalid);
+      combine_min(first_misplaced, misplaced);
+    });
     last_team_size_ = team;
     return {first_invalid, first_misplaced};
   }

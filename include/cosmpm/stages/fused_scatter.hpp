@@ -163,18 +163,16 @@ FusedHalfReport over_halves(State& s, double* const lower, Visit&& visit) {
   for (auto& r : reports) {
     r = {count, count, count, count, s.grid.node_count(), -1};
   }
-  [[maybe_unused]] const int threads = std::min(s.threads, 2);
   int team = 1;
-#if defined(_OPENMP)
-#pragma omp parallel for schedule(static) num_threads(threads) if (count >= parallel_threshold) \
-    reduction(max                                                                               \
-              : team)
-#endif
-  for (int h = 0; h < 2; ++h) {
-    team = current_team_size();
-    reports[h] =
-        visit(h == 0 ? Index{0} : cut, h == 0 ? cut : count, h == 0 ? lower : upper, reports[h]);
-  }
+  parallel_region(std::min(s.threads, 2), count, [&] {
+    const int size = current_team_size();
+    const int thread = current_thread();
+    if (thread == 0) team = size;
+    for (int h = thread; h < 2; h += size) {  // thread h takes half h, as schedule(static)
+      reports[h] =
+          visit(h == 0 ? Index{0} : cut, h == 0 ? cut : count, h == 0 ? lower : upper, reports[h]);
+    }
+  });
   s.fused_team = team;
   // The second half's nodes: from its lowest first node to its highest one's stencil end.
   const FusedHalfReport& second = reports[1];

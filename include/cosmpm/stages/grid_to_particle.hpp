@@ -268,11 +268,27 @@ void map_to_particles(State& s, double dt) {
   // pack_width particles at a time, then the rest one by one.
   constexpr int W = pack_width;
   const Index packs = count / W;
-  COSMPM_OMP_PARALLEL_FOR_MIN(s.threads, count, first_outside, first_bad, first_moved)
-  for (Index b = 0; b < packs; ++b) {
-    PackedStencilOf<State, W> st;
-    map_from_grid<W, with_stress_update, update>(s, b * W, pass, st, first_outside, first_bad,
-                                                 first_moved);
+  // An OpenMP loop on a team, the same loop alone otherwise (outside the runtime, as
+  // parallel_region's). Neither parallel_region nor a lambda for the loop's body: so written,
+  // GCC 12 contracted this map's multiply-adds differently (-march=native), and MUSL's
+  // Cosserat results moved.
+  if (runs_on_team(s.threads, count)) {
+#if defined(_OPENMP)
+#pragma omp parallel for schedule(static) num_threads(s.threads) \
+    reduction(min                                                \
+              : first_outside, first_bad, first_moved)
+#endif
+    for (Index b = 0; b < packs; ++b) {
+      PackedStencilOf<State, W> st;
+      map_from_grid<W, with_stress_update, update>(s, b * W, pass, st, first_outside, first_bad,
+                                                   first_moved);
+    }
+  } else {
+    for (Index b = 0; b < packs; ++b) {
+      PackedStencilOf<State, W> st;
+      map_from_grid<W, with_stress_update, update>(s, b * W, pass, st, first_outside, first_bad,
+                                                   first_moved);
+    }
   }
   for (Index p = packs * W; p < count; ++p) {
     PackedStencilOf<State, 1> st;

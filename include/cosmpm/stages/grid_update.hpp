@@ -284,7 +284,7 @@ void update_grid_pass(State& s, double dt) {
     // the trial velocity, and the impulse recorded at the end, start from a field that does
     // not penetrate. The correction is not an acceleration: FLIP particles do not receive it.
     grid_velocity_from_momentum(s, dt);
-    COSMPM_OMP_PARALLEL(s.threads, end - first) {
+    parallel_region(s.threads, end - first, [&] {
       const Share share = node_share(s.node_range);
       const auto update_node = node_momentum_update<Dim>(nodes, dt, damping);
       const double* const mass = nodes.mass.data();
@@ -297,12 +297,12 @@ void update_grid_pass(State& s, double dt) {
         update_node(n, 1.0 / mass[n], Vec<Dim>(update_node.momentum[n]));
       }
       if constexpr (R > 0) update_rotations(share.first, share.last, /*spin_is_rate=*/true);
-    }
+    });
   } else {
     constexpr Index size = State::scatter_record::all;
     double* const scattered = s.scatter.data();
     const PendingUpper pending = from_records ? take_pending_upper(s, size) : PendingUpper{};
-    COSMPM_OMP_PARALLEL(s.threads, end - first) {
+    parallel_region(s.threads, end - first, [&] {
       const Share share = node_share(s.node_range);
       const auto update_node = node_momentum_update<Dim>(nodes, dt, damping);
       const double* const mass = nodes.mass.data();
@@ -333,7 +333,7 @@ void update_grid_pass(State& s, double dt) {
         apply_conditions_in(s, share.first, share.last);
         write_gather_records(s, shared_inverse_dt, share.first, share.last);
       }
-    }
+    });
     if constexpr (from_records) records_read_and_zeroed(s, first * size, end * size);
     if constexpr (conditions_in_shares<State>) return;
   }
@@ -341,10 +341,10 @@ void update_grid_pass(State& s, double dt) {
   // particles) carries the step's impulse; boundary conditions come last and win.
   apply_conditions(s, nodes.momentum, nodes.spin_momentum);
   correct_and_apply_conditions(s, nodes.velocity, nodes.spin, dt, contact::Phase::end_velocity);
-  COSMPM_OMP_PARALLEL(s.threads, end - first) {
+  parallel_region(s.threads, end - first, [&] {
     const Share share = node_share(s.node_range);
     write_gather_records(s, shared_inverse_dt, share.first, share.last);
-  }
+  });
 }
 
 }  // namespace detail

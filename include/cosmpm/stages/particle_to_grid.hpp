@@ -286,7 +286,7 @@ void nodes_from_records(State& s, bool with_forces) {
   const detail::PendingUpper pending = detail::take_pending_upper(s, size);
   // In the node loops' static shares (as update_grid's): each thread writes the nodes it
   // updates next, where one thread writing them all cost the two-thread step 14-22 us.
-  COSMPM_OMP_PARALLEL(s.threads, range.size()) {
+  parallel_region(s.threads, range.size(), [&] {
     const Share share = node_share(range);
     for (const detail::RecordRun run :
          detail::complete_records(pending, scattered, share.first, share.last)) {
@@ -298,7 +298,7 @@ void nodes_from_records(State& s, bool with_forces) {
           detail::node_from_record<false>(s, n, run.records + n * size);
       }
     }
-  }
+  });
   detail::records_read_and_zeroed(s, range.first * size, range.end * size);
 }
 

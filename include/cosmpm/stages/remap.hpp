@@ -99,7 +99,7 @@ void velocities_from_remap(State& s, double* records, double dt) {
   const NodeRange range = s.node_range;
   const double empty = s.empty_node_mass();
   const PendingUpper pending = take_pending_upper(s, C);
-  COSMPM_OMP_PARALLEL(s.threads, range.size()) {
+  parallel_region(s.threads, range.size(), [&] {
     const Share share = node_share(range);  // the node loops' static shares
     // Locals: the region's shared variables are read through a pointer, reloaded per node.
     const double empty_mass = empty;
@@ -119,7 +119,7 @@ void velocities_from_remap(State& s, double* records, double dt) {
       }
     }
     if constexpr (R > 0) spins_from_momenta<R>(nodes, share.first * R, share.last * R, empty);
-  }
+  });
   records_read_and_zeroed(s, range.first * C, range.end * C);
   correct_and_apply_conditions(s, nodes.velocity, nodes.spin, dt,
                                contact::Phase::remapped_velocity);

@@ -181,13 +181,13 @@ const double* rate_records(State& s, const std::vector<Vec<State::dim>>& node_ve
     return node_velocity.data()->data();
   } else {
     s.rate_gather.resize(static_cast<std::size_t>(size * nodes));
-    const NodeRange range = s.node_range;             // the stencils lie in it
-    COSMPM_OMP_PARALLEL_FOR(s.threads, range.size())  // the node loops' static shares
-    for (Index n = range.first; n < range.end; ++n) {
+    const NodeRange range = s.node_range;                 // the stencils lie in it
+    parallel_for(s.threads, range.size(), [&](Index i) {  // the node loops' static shares
+      const Index n = range.first + i;
       double* const record = s.rate_gather.data() + n * size;
       for (int d = 0; d < Dim; ++d) record[Record::velocity + d] = node_velocity[n][d];
       for (int k = 0; k < R; ++k) record[Record::spin + k] = node_spin[n * R + k];
-    }
+    });
     return s.rate_gather.data();
   }
 }
@@ -234,8 +234,11 @@ void velocity_gradient_from_grid(State& s, const std::vector<Vec<State::dim>>& n
   // pack_width particles at a time, then the rest one by one.
   constexpr int W = pack_width;
   const Index packs = count / W;
-  COSMPM_OMP_PARALLEL_FOR(s.threads, count)
-  for (Index b = 0; b < packs; ++b) detail::rates_from_grid<W>(s, b * W, stencil_grid, records);
+  parallel_region(s.threads, count, [&] {
+    const Share share = static_share(packs);
+    for (Index b = share.first; b < share.last; ++b)
+      detail::rates_from_grid<W>(s, b * W, stencil_grid, records);
+  });
   detail::rates_of_range(s, packs * W, count, stencil_grid, records);
   s.rates_stored = true;
 }
@@ -314,10 +317,14 @@ void update_stress(State& s, double dt) {
   constexpr Index run = detail::update_run;
   const Index runs = (count + run - 1) / run;
   Index first_bad = count;
-  COSMPM_OMP_PARALLEL_FOR_MIN(s.threads, count, first_bad)
-  for (Index r = 0; r < runs; ++r) {
-    detail::update_stress_run(s, r * run, std::min(run, count - r * run), dt, first_bad);
-  }
+  parallel_region(s.threads, count, [&] {
+    Index bad = count;  // this thread's first, in a register
+    const Share share = static_share(runs);
+    for (Index r = share.first; r < share.last; ++r) {
+      detail::update_stress_run(s, r * run, std::min(run, count - r * run), dt, bad);
+    }
+    combine_min(first_bad, bad);
+  });
   if (first_bad < count) {
     throw_unstable_stress<State::dim, typename State::model_type>(s.particles, first_bad, s.clock);
   }
@@ -342,12 +349,16 @@ void update_stress_from_grid(State& s, double dt, const std::vector<Vec<State::d
     constexpr Index run = detail::update_run;  // a whole number of packs: 4a's packs as apart
     const Index runs = (count + run - 1) / run;
     Index first_bad = count;
-    COSMPM_OMP_PARALLEL_FOR_MIN(s.threads, count, first_bad)
-    for (Index r = 0; r < runs; ++r) {
-      const Index begin = r * run;
-      detail::update_stress_of_run(s, begin, std::min(begin + run, count), dt, stencil_grid,
-                                   records, first_bad);
-    }
+    parallel_region(s.threads, count, [&] {
+      Index bad = count;  // this thread's first, in a register
+      const Share share = static_share(runs);
+      for (Index r = share.first; r < share.last; ++r) {
+        const Index begin = r * run;
+        detail::update_stress_of_run(s, begin, std::min(begin + run, count), dt, stencil_grid,
+                                     records, bad);
+      }
+      combine_min(first_bad, bad);
+    });
     s.rates_stored = false;  // the packs' rates were not stored: update_stress needs 4a again
     if (first_bad < count) {
       throw_unstable_stress<State::dim, typename State::model_type>(s.particles, first_bad,

@@ -15,7 +15,11 @@ template <class Body>
 int parallel_for(int threads, Index count, Body&& body) {
   int team = 1;
 #if defined(_OPENMP)
-#pragma omp parallel num_threads(threads) if (count >= cosmpm::parallel_threshold)
+  if (!cosmpm::runs_on_team(threads, count)) {  // outside the runtime (core/parallel.hpp)
+    for (Index i = 0; i < count; ++i) body(i);
+    return team;
+  }
+#pragma omp parallel num_threads(threads)
   {
 #pragma omp master
     team = omp_get_num_threads();
@@ -46,7 +50,11 @@ template <class Body>
 int parallel_for_motion(int threads, Index count, MotionReport& report, Body&& body) {
   int team = 1;
 #if defined(_OPENMP)
-#pragma omp parallel num_threads(threads) if (count >= cosmpm::parallel_threshold)
+  if (!cosmpm::runs_on_team(threads, count)) {  // outside the runtime (core/parallel.hpp)
+    for (Index i = 0; i < count; ++i) body(i, report);
+    return team;
+  }
+#pragma omp parallel num_threads(threads)
   {
 #pragma omp master
     team = omp_get_num_threads();
