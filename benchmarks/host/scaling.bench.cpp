@@ -116,13 +116,13 @@ void cache_halves(benchmark::State& state, bool swapped) {
 }
 
 // What starting and ending a parallel region costs, against handing work to a thread that is
-// already running. The engine opens two (fused USL) to five (fused MUSL, Cosserat) regions per
-// step; under libgomp each costs two futex wakes (the release of the team and the barrier at
-// its end, made by whichever thread arrives last, whether or not the other one sleeps), and a
-// system call costs about 1 us on this VM (docs/performance.md, "What a parallel region
-// costs"). fork_join/omp_region: an empty `omp parallel` of `threads`; fork_join/spin_handover:
-// inside one region, thread 0 hands a token to thread 1 and waits for it back, through one
-// atomic each way: the floor a team that stays between the passes would pay per pass.
+// already running. A step opens four to eight regions on two threads (core/parallel.hpp runs
+// none on one); libgomp ends each with a futex wake, and releases a team of two with another,
+// made whether or not a thread sleeps, and a system call costs about 1 us on this VM
+// (docs/performance.md, "What a parallel region costs"). fork_join/omp_region: an empty `omp
+// parallel` of `threads`, its time per region; fork_join/spin_handover: inside one region,
+// thread 0 hands a token to thread 1 and waits for it back, one atomic each way, its items
+// round trips: the floor a team that stayed between the passes would pay per pass.
 void omp_region(benchmark::State& state) {
   const int threads = static_cast<int>(state.range(0));
   long entered = 0;
@@ -135,9 +135,6 @@ void omp_region(benchmark::State& state) {
   benchmark::DoNotOptimize(entered);
   state.SetItemsProcessed(state.iterations());
   state.counters["threads"] = threads;
-  state.counters["us_per_region"] =
-      benchmark::Counter(static_cast<double>(state.iterations()) * 1e-6,
-                         benchmark::Counter::kIsRate | benchmark::Counter::kInvert);
 }
 
 void spin_handover(benchmark::State& state) {
@@ -161,9 +158,6 @@ void spin_handover(benchmark::State& state) {
     }
   }
   state.SetItemsProcessed(state.iterations() * handovers);
-  state.counters["us_per_handover"] =
-      benchmark::Counter(static_cast<double>(state.iterations() * handovers) * 1e-6,
-                         benchmark::Counter::kIsRate | benchmark::Counter::kInvert);
 }
 
 }  // namespace
