@@ -112,8 +112,13 @@ TEST_CASE("parallel_for: every iteration once, on the thread schedule(static) gi
         by[static_cast<std::size_t>(i)] = cosmpm::current_thread();
       });
       CHECK(std::count(ran.begin(), ran.end(), 1) == count);
-      // schedule(static) over the team that ran: thread t has the t-th contiguous part.
+      // schedule(static) over the team that ran: thread t has the t-th contiguous part. Without
+      // OpenMP there is no team.
+#if defined(_OPENMP)
       const int team = cosmpm::runs_on_team(threads, count) ? threads : 1;
+#else
+      const int team = 1;
+#endif
       std::vector<int> expected(static_cast<std::size_t>(count), 0);
       for (int t = 0; t < team; ++t) {
         const Index base = count / team, extra = count % team;
