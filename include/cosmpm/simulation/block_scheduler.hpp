@@ -106,6 +106,11 @@ class BlockScheduler {
     Index first_misplaced = count;
     int team = 1;
     parallel_region(threads, count, [&] {
+      // Locals: read through the closure, the arrays' addresses were reloaded per particle
+      // (every store of f could alias the closure).
+      const Index* const block_start = start;
+      const Index* const sorted = order;
+      F& visit_particle = f;
       const int thread = current_thread();
       const int size = current_team_size();
       if (thread == 0) team = size;
@@ -114,12 +119,12 @@ class BlockScheduler {
         const auto [first, last] = share_of(blocks, thread, size);
         for (Index b = first; b < last; ++b) {
           const Index block = blocks[static_cast<std::size_t>(b)];
-          for (Index i = start[block]; i < start[block + 1]; ++i) {
-            const Index p = order[i];
+          for (Index i = block_start[block]; i < block_start[block + 1]; ++i) {
+            const Index p = sorted[i];
             if constexpr (std::is_void_v<std::invoke_result_t<F&, Index>>) {
-              f(p);
+              visit_particle(p);
             } else {
-              const Visit visit = f(p);
+              const Visit visit = visit_particle(p);
               if (visit == Visit::invalid_stencil) [[unlikely]]
                 invalid = std::min(invalid, p);
               if (visit == Visit::misplaced) [[unlikely]]
