@@ -81,8 +81,8 @@ inline bool runs_on_team(int threads, long work) {
 namespace detail {
 // The body of a region as one function, called by every thread of a team or by the calling
 // thread alone: the same machine code either way, as OpenMP's outlined region function is.
-// Inlined into each path, the compiler contracted multiply-adds differently there (GCC 12,
-// -march=native), and results could have depended on the thread count.
+// Inlined into each path, the two copies could contract multiply-adds differently (GCC 12,
+// -march=native, as map_to_particles' lambda did); results would then depend on the threads.
 template <class Body>
 [[gnu::noinline]] void run_region_body(Body& body) {
   body();
