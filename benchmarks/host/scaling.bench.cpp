@@ -41,16 +41,13 @@ void plain_loop(benchmark::State& state) {
   const int threads = static_cast<int>(state.range(0));
   std::vector<double> values(item_count, 1.0);
   for (auto _ : state) {
-    const auto count = static_cast<long>(values.size());
-#if defined(_OPENMP)
-#pragma omp parallel for schedule(static) num_threads(threads)
-#endif
-    for (long i = 0; i < count; ++i) {
+    const auto count = static_cast<cosmpm::Index>(values.size());
+    cosmpm::parallel_for(threads, count, [&](cosmpm::Index i) {
       double x = values[static_cast<std::size_t>(i)];
       // Contracts towards 1, so the values stay finite however many iterations run.
       for (int k = 0; k < chain_length; ++k) x = 0.5 * x + 0.5;
       values[static_cast<std::size_t>(i)] = x;
-    }
+    });
     benchmark::DoNotOptimize(values.data());
     benchmark::ClobberMemory();
   }
@@ -65,19 +62,20 @@ void throughput_loop(benchmark::State& state) {
   static_assert(item_count % block == 0);
   std::vector<double> values(item_count, 1.0);
   for (auto _ : state) {
-    const auto blocks = static_cast<long>(values.size()) / block;
-#if defined(_OPENMP)
-#pragma omp parallel for schedule(static) num_threads(threads)
-#endif
-    for (long b = 0; b < blocks; ++b) {
-      double x[block];
-      double* const v = values.data() + b * block;
-      for (long j = 0; j < block; ++j) x[j] = v[j];
-      for (int k = 0; k < chain_length; ++k) {
-        for (long j = 0; j < block; ++j) x[j] = 0.5 * x[j] + 0.5;
+    const auto blocks = static_cast<cosmpm::Index>(values.size()) / block;
+    // The region's work is the items, not the blocks: it runs on a team as the plain loop does.
+    cosmpm::parallel_region(threads, static_cast<long>(values.size()), [&] {
+      const cosmpm::Share share = cosmpm::static_share(blocks);
+      for (cosmpm::Index b = share.first; b < share.last; ++b) {
+        double x[block];
+        double* const v = values.data() + b * block;
+        for (long j = 0; j < block; ++j) x[j] = v[j];
+        for (int k = 0; k < chain_length; ++k) {
+          for (long j = 0; j < block; ++j) x[j] = 0.5 * x[j] + 0.5;
+        }
+        for (long j = 0; j < block; ++j) v[j] = x[j];
       }
-      for (long j = 0; j < block; ++j) v[j] = x[j];
-    }
+    });
     benchmark::DoNotOptimize(values.data());
     benchmark::ClobberMemory();
   }
@@ -94,10 +92,7 @@ void cache_halves(benchmark::State& state, bool swapped) {
   std::vector<double> a(static_cast<std::size_t>(n), 1.0), b(static_cast<std::size_t>(n), 2.0);
   long pass = 0;
   for (auto _ : state) {
-#if defined(_OPENMP)
-#pragma omp parallel num_threads(threads)
-#endif
-    {
+    cosmpm::parallel_region(threads, n, [&] {
       const int thread = cosmpm::current_thread();
       const int team = cosmpm::current_team_size();
       const long half = swapped ? (thread + pass) % team : thread;
@@ -106,7 +101,7 @@ void cache_halves(benchmark::State& state, bool swapped) {
       double* const y = b.data();
       for (long i = first; i < last; ++i) x[i] = 0.5 * x[i] + y[i];
       for (long i = first; i < last; ++i) y[i] = 0.5 * y[i] + x[i];
-    }
+    });
     ++pass;
     benchmark::DoNotOptimize(a.data());
     benchmark::ClobberMemory();
@@ -137,15 +132,36 @@ void omp_region(benchmark::State& state) {
   state.counters["threads"] = threads;
 }
 
+// fork_join/team_region: an empty region of the engine's own team (core/thread_team.hpp), as the
+// stages open theirs; fork_join/team_barrier: a barrier inside one, per barrier.
+void team_region(benchmark::State& state) {
+  const int threads = static_cast<int>(state.range(0));
+  std::atomic<long> entered{0};
+  for (auto _ : state) {
+    cosmpm::parallel_region(threads, cosmpm::parallel_threshold,
+                            [&] { entered.fetch_add(1, std::memory_order_relaxed); });
+  }
+  benchmark::DoNotOptimize(entered.load());
+  state.SetItemsProcessed(state.iterations());
+  state.counters["threads"] = threads;
+}
+
+void team_barrier(benchmark::State& state) {
+  constexpr long barriers = 10000;  // per benchmark iteration
+  for (auto _ : state) {
+    cosmpm::parallel_region(2, cosmpm::parallel_threshold, [&] {
+      for (long k = 0; k < barriers; ++k) cosmpm::team_barrier();
+    });
+  }
+  state.SetItemsProcessed(state.iterations() * barriers);
+}
+
 void spin_handover(benchmark::State& state) {
   constexpr long handovers = 100000;  // per benchmark iteration
   std::atomic<long> token{0};
   for (auto _ : state) {
     token.store(0, std::memory_order_relaxed);
-#if defined(_OPENMP)
-#pragma omp parallel num_threads(2)
-#endif
-    {
+    cosmpm::parallel_region(2, cosmpm::parallel_threshold, [&] {
       const int thread = cosmpm::current_thread();
       const int team = cosmpm::current_team_size();
       // Thread 0 moves the token to odd values, thread 1 to even ones; alone, a thread does both.
@@ -155,7 +171,7 @@ void spin_handover(benchmark::State& state) {
         }
         token.store(k + 1, std::memory_order_release);
       }
-    }
+    });
   }
   state.SetItemsProcessed(state.iterations() * handovers);
 }
@@ -163,6 +179,8 @@ void spin_handover(benchmark::State& state) {
 }  // namespace
 
 BENCHMARK(omp_region)->Name("fork_join/omp_region")->Arg(1)->Arg(2)->UseRealTime();
+BENCHMARK(team_region)->Name("fork_join/team_region")->Arg(1)->Arg(2)->UseRealTime();
+BENCHMARK(team_barrier)->Name("fork_join/team_barrier")->UseRealTime();
 BENCHMARK(spin_handover)->Name("fork_join/spin_handover")->UseRealTime();
 BENCHMARK_CAPTURE(cache_halves, own, false)
     ->Name("host/cache_halves")

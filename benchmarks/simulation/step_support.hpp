@@ -5,11 +5,13 @@
 // counters. items_per_second is particle-steps per second.
 #include <benchmark/benchmark.h>
 
+#include <atomic>
 #include <optional>
 #include <type_traits>
 
 #include "cosmpm/continuum/classical.hpp"
 #include "cosmpm/continuum/cosserat.hpp"
+#include "cosmpm/core/parallel.hpp"
 #include "cosmpm/grid/boundary.hpp"
 #include "cosmpm/grid/grid.hpp"
 #include "cosmpm/material/concept.hpp"
@@ -98,12 +100,18 @@ double plastic_fraction(const Sim& sim) {
   if constexpr (has_plastic_state<Model>) {
     const auto& states = sim.particles().template get<particles::field::MaterialState<Model>>();
     const Index count = static_cast<Index>(states.size());
-    double plastic = 0.0;
-#if defined(_OPENMP)
-#pragma omp parallel for schedule(static) num_threads(sim.threads()) reduction(+ : plastic)
-#endif
-    for (Index i = 0; i < count; ++i) plastic += states[static_cast<std::size_t>(i)].plastic;
-    return plastic / static_cast<double>(count);
+    // On the engine's team, not an OpenMP one: OpenMP's threads would spin on after the count
+    // and take the core from the team's helper in the next timed step.
+    std::atomic<Index> plastic{0};
+    parallel_region(sim.threads(), count, [&] {
+      const Share share = static_share(count);
+      Index mine = 0;
+      for (Index i = share.first; i < share.last; ++i) {
+        mine += states[static_cast<std::size_t>(i)].plastic ? 1 : 0;
+      }
+      plastic.fetch_add(mine, std::memory_order_relaxed);
+    });
+    return static_cast<double>(plastic.load()) / static_cast<double>(count);
   } else {
     return 0.0;
   }

@@ -24,10 +24,8 @@ TEST_CASE("static_share: the iterations schedule(static) gives the calling threa
       std::vector<int> by_share(static_cast<std::size_t>(count), -1);
       std::vector<int> by_loop(static_cast<std::size_t>(count), -1);
       std::vector<int> overlaps(static_cast<std::size_t>(team), 0);
-#if defined(_OPENMP)
-#pragma omp parallel num_threads(team)
-#endif
-      {
+      // A region of the engine's team, whatever the count (work = the threshold).
+      cosmpm::parallel_region(team, cosmpm::parallel_threshold, [&] {
         const cosmpm::Share share = cosmpm::static_share(count);
         const int thread = cosmpm::current_thread();
         for (Index i = share.first; i < share.last; ++i) {
@@ -35,13 +33,13 @@ TEST_CASE("static_share: the iterations schedule(static) gives the calling threa
           if (by_share[k] != -1) ++overlaps[static_cast<std::size_t>(thread)];
           by_share[k] = thread;
         }
-      }
+      });
 #if defined(_OPENMP)
 #pragma omp parallel for schedule(static) num_threads(team)
+      for (Index i = 0; i < count; ++i) by_loop[static_cast<std::size_t>(i)] = omp_get_thread_num();
+#else
+      std::fill(by_loop.begin(), by_loop.end(), 0);
 #endif
-      for (Index i = 0; i < count; ++i) {
-        by_loop[static_cast<std::size_t>(i)] = cosmpm::current_thread();
-      }
       for (const int o : overlaps) CHECK(o == 0);
       CHECK(by_share == by_loop);  // every iteration once, on the same thread
     }
@@ -90,11 +88,15 @@ TEST_CASE("parallel_region: a team where it pays, every member calling the body 
   REQUIRE(cosmpm::runs_on_team(2, cosmpm::parallel_threshold));
   std::vector<int> calls(2, 0);
   int team = 0;
+  int level = -1;
   cosmpm::parallel_region(2, cosmpm::parallel_threshold, [&] {
     ++calls[static_cast<std::size_t>(cosmpm::current_thread())];  // each its own slot
-#pragma omp master
-    team = cosmpm::current_team_size();
+    if (cosmpm::current_thread() == 0) {
+      team = cosmpm::current_team_size();
+      level = region_level();
+    }
   });
+  CHECK(level == 0);  // the engine's own team, not OpenMP's
   CHECK(team == 2);
   CHECK(calls == std::vector<int>{1, 1});
 }

@@ -1,12 +1,14 @@
 #pragma once
-// OpenMP without warnings when it is off: loops compile serially and stay correct.
+// How the engine runs work on several threads.
 //
 // Regions and loops run on a team only when one pays: more than one thread asked for and at
 // least cosmpm::parallel_threshold items (a team's start-up and barrier cost more than they
 // save on less, and far more on a loaded machine). Otherwise they run on the calling thread
-// without entering the OpenMP runtime at all: libgomp makes a futex system call at the end of
-// every region, even a team of one, and a system call costs about 1 us on this VM, 1-1.5 % of
-// a one-thread step (docs/performance.md, "What a parallel region costs").
+// alone. The team is the engine's own (core/thread_team.hpp), not OpenMP's: libgomp makes a
+// futex system call at a region's start, at each barrier and at its end, even for a team of
+// one, and a system call costs about 1 us on this VM (docs/performance.md, "What a parallel
+// region costs", "A team of our own"). OpenMP still decides how many threads there are
+// (OMP_NUM_THREADS), and a build without it runs on one.
 //
 // Iterations are split in equal contiguous parts, thread t always taking the t-th (OpenMP
 // `schedule(static)`, static_share below), so a thread touches the same particles and nodes in
@@ -18,8 +20,10 @@
 // iterations, so results do not depend on which thread ran which part.
 #include <algorithm>
 #include <atomic>
+#include <type_traits>
 
 #include "cosmpm/core/compiler.hpp"
+#include "cosmpm/core/thread_team.hpp"
 #include "cosmpm/core/types.hpp"
 
 #if defined(_OPENMP)
@@ -40,22 +44,15 @@ inline int resolve_thread_count(int requested) {
 #endif
 }
 
-// Threads of the team running the calling code (1 outside a parallel region or without OpenMP).
+// Threads of the engine's region running the calling code (1 outside one). An OpenMP region of
+// the caller's own does not count: a simulation stepped on one thread inside it runs whole.
 inline int current_team_size() {
-#if defined(_OPENMP)
-  return omp_get_num_threads();
-#else
-  return 1;
-#endif
+  return detail::team_place.size;
 }
 
-// The calling thread's number in its team (0 outside a parallel region or without OpenMP).
+// The calling thread's number in the engine's region running it (0 outside one).
 inline int current_thread() {
-#if defined(_OPENMP)
-  return omp_get_thread_num();
-#else
-  return 0;
-#endif
+  return detail::team_place.thread;
 }
 
 // The iterations [first, last) of `count` that `schedule(static)` gives the calling thread:
@@ -79,29 +76,39 @@ inline bool runs_on_team(int threads, long work) {
 }
 
 namespace detail {
-// The body of a region as one function, called by every thread of a team or by the calling
-// thread alone: the same machine code either way, as OpenMP's outlined region function is.
-// Inlined into each path, the two copies could contract multiply-adds differently (GCC 12,
-// -march=native, as map_to_particles' lambda did); results would then depend on the threads.
+// The body of a region as one function, called by every member of a team or by the calling
+// thread alone: the same machine code either way. Inlined into each path, the two copies could
+// contract multiply-adds differently (GCC 12, -march=native, as map_to_particles' lambda did);
+// results would then depend on the threads.
 template <class Body>
 [[gnu::noinline]] void run_region_body(Body& body) {
   body();
 }
+template <class Body>
+void call_region_body(void* body) {
+  run_region_body(*static_cast<Body*>(body));
+}
 }  // namespace detail
 
-// body() once by every thread of a team of `threads` when runs_on_team, each splitting the
-// work itself (static_share); else once on the calling thread, outside the runtime.
+// body() once by every member of a team of `threads` when runs_on_team, each splitting the
+// work itself (static_share); else once on the calling thread.
 template <class Body>
 COSMPM_ALWAYS_INLINE void parallel_region([[maybe_unused]] int threads, [[maybe_unused]] long work,
                                           Body&& body) {
+  using Plain = std::remove_reference_t<Body>;
 #if defined(_OPENMP)
   if (runs_on_team(threads, work)) {
-#pragma omp parallel num_threads(threads)
-    detail::run_region_body(body);
+    detail::run_on_team(threads, &detail::call_region_body<Plain>, body);
     return;
   }
 #endif
   detail::run_region_body(body);
+}
+
+// Inside parallel_region's body: waits until every member of the region has come (nothing on a
+// team of one).
+inline void team_barrier() {
+  detail::team_barrier();
 }
 
 // body(i) for i in [0, count), split as schedule(static) where parallel_region runs a team.

@@ -132,9 +132,7 @@ class BlockScheduler {
             }
           }
         }
-#if defined(_OPENMP)
-#pragma omp barrier
-#endif
+        team_barrier();
       }
       combine_min(first_invalid, invalid);
       combine_min(first_misplaced, misplaced);
@@ -161,9 +159,7 @@ class BlockScheduler {
 
   // Threads that ran the last coloured pass (1 when it ran serially): lets a test check that
   // the parallel path it means to exercise actually ran.
-  int last_team_size() const {
-    return last_team_size_;
-  }
+  int last_team_size() const { return last_team_size_; }
 
  private:
   template <class Positions>

@@ -257,6 +257,27 @@ void finish_map(State& s, Index first_outside, Index first_bad, Index first_move
   }
 }
 
+// The packs of map_to_particles on the engine's team, each member its static share; returns
+// the first particle outside, with a bad stress and moved (the count for none). Taking copies,
+// it leaves map_to_particles' locals alone (see there).
+template <int W, bool with_stress_update, VelocityUpdate update, class State, class Pass>
+[[gnu::noinline]] std::array<Index, 3> map_packs_on_team(State& s, Index packs, const Pass pass) {
+  const Index count = s.particles.size();
+  std::array<Index, 3> firsts{count, count, count};
+  parallel_region(s.threads, count, [&] {
+    const Share share = static_share(packs);
+    Index outside = count, bad = count, moved = count;  // this thread's firsts
+    for (Index b = share.first; b < share.last; ++b) {
+      PackedStencilOf<State, W> st;
+      map_from_grid<W, with_stress_update, update>(s, b * W, pass, st, outside, bad, moved);
+    }
+    combine_min(firsts[0], outside);
+    combine_min(firsts[1], bad);
+    combine_min(firsts[2], moved);
+  });
+  return firsts;
+}
+
 template <bool with_stress_update, VelocityUpdate update, class State>
 void map_to_particles(State& s, double dt) {
   require_start_stencils(s, "map_to_particles");
@@ -268,21 +289,14 @@ void map_to_particles(State& s, double dt) {
   // pack_width particles at a time, then the rest one by one.
   constexpr int W = pack_width;
   const Index packs = count / W;
-  // An OpenMP loop on a team, the same loop alone otherwise (outside the runtime, as
-  // parallel_region's). Neither parallel_region nor a lambda for the loop's body: so written,
-  // GCC 12 contracted this map's multiply-adds differently (-march=native), and MUSL's
-  // Cosserat results moved.
+  // On a team through a function of its own, alone through the loop below: with the team's
+  // lambda here, or the loop in a function both paths call, GCC 12 contracted this map's
+  // multiply-adds differently (-march=native), and MUSL's Cosserat results moved.
   if (runs_on_team(s.threads, count)) {
-#if defined(_OPENMP)
-#pragma omp parallel for schedule(static) num_threads(s.threads) \
-    reduction(min                                                \
-              : first_outside, first_bad, first_moved)
-#endif
-    for (Index b = 0; b < packs; ++b) {
-      PackedStencilOf<State, W> st;
-      map_from_grid<W, with_stress_update, update>(s, b * W, pass, st, first_outside, first_bad,
-                                                   first_moved);
-    }
+    const auto firsts = map_packs_on_team<W, with_stress_update, update>(s, packs, pass);
+    first_outside = firsts[0];
+    first_bad = firsts[1];
+    first_moved = firsts[2];
   } else {
     for (Index b = 0; b < packs; ++b) {
       PackedStencilOf<State, W> st;
