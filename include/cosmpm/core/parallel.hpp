@@ -95,9 +95,9 @@ void call_region_body(void* body) {
 template <class Body>
 COSMPM_ALWAYS_INLINE void parallel_region([[maybe_unused]] int threads, [[maybe_unused]] long work,
                                           Body&& body) {
-  using Plain = std::remove_reference_t<Body>;
 #if defined(_OPENMP)
   if (runs_on_team(threads, work)) {
+    using Plain = std::remove_reference_t<Body>;
     detail::run_on_team(threads, &detail::call_region_body<Plain>, body);
     return;
   }
