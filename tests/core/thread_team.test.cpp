@@ -4,9 +4,14 @@
 
 #include <algorithm>
 #include <atomic>
+#include <chrono>
 #include <set>
 #include <thread>
 #include <vector>
+
+#include <signal.h>
+#include <sys/wait.h>
+#include <unistd.h>
 
 #include "cosmpm/core/parallel.hpp"
 #include "cosmpm/core/types.hpp"
@@ -141,6 +146,37 @@ TEST_CASE("team: two user threads, each with a team of its own, at the same time
   for (auto& user : users) user.join();
   const long expected = regions * (count * (count - 1) / 2);
   CHECK(totals == std::vector<long>{expected, expected});
+}
+
+// A child of fork() has only the forking thread: the team made before has no helpers there, and
+// a region that waited for them would never end. The child makes a team of its own.
+TEST_CASE("team: a forked child runs regions on a team of its own") {
+  constexpr Index count = 6000;
+  const auto sum_on_team = [] {
+    std::atomic<long> sum{0};
+    cosmpm::parallel_region(2, on_team, [&] {
+      const cosmpm::Share share = cosmpm::static_share(count);
+      sum.fetch_add(share.last - share.first);
+      cosmpm::team_barrier();
+    });
+    return sum.load();
+  };
+  REQUIRE(sum_on_team() == count);  // the parent's team exists before the fork
+  const pid_t child = fork();
+  REQUIRE(child >= 0);
+  if (child == 0) _exit(sum_on_team() == count && sum_on_team() == count ? 0 : 1);
+  int status = 0;
+  pid_t done = 0;
+  const auto deadline = std::chrono::steady_clock::now() + std::chrono::seconds(20);
+  while ((done = waitpid(child, &status, WNOHANG)) == 0 &&
+         std::chrono::steady_clock::now() < deadline) {
+    std::this_thread::sleep_for(std::chrono::milliseconds(10));
+  }
+  if (done == 0) kill(child, SIGKILL), waitpid(child, &status, 0);
+  CHECK(done == child);  // it did not hang
+  CHECK(WIFEXITED(status));
+  CHECK(WEXITSTATUS(status) == 0);
+  CHECK(sum_on_team() == count);  // the parent's team still works
 }
 #endif
 

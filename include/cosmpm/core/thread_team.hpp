@@ -10,7 +10,8 @@
 //
 // A waiting member spins for up to team_spin_budget(), then sleeps in the kernel until woken
 // (std::atomic wait and notify: no system call when nobody sleeps). OMP_WAIT_POLICY=passive
-// makes it sleep at once, as libgomp's threads do under that setting.
+// makes it sleep at once, as libgomp's threads do under that setting. A child of fork() makes a
+// team of its own: the parent's helpers are not there.
 #include <atomic>
 #include <chrono>
 #include <cstdlib>
@@ -18,6 +19,10 @@
 #include <string_view>
 #include <thread>
 #include <vector>
+
+#if __has_include(<pthread.h>)
+#include <pthread.h>
+#endif
 
 namespace cosmpm::detail {
 
@@ -75,10 +80,23 @@ inline unsigned wait_for_change(const std::atomic<unsigned>& word, unsigned seen
   }
 }
 
+// Forks this process has seen itself born from: a child of fork() has only the forking thread,
+// so a team made before has no helpers there (counted by a pthread_atfork handler in the child,
+// registered at the first call).
+inline std::atomic<unsigned> forks_seen{0};
+inline unsigned fork_count() {
+#if __has_include(<pthread.h>)
+  static const int registered =
+      pthread_atfork(nullptr, nullptr, [] { forks_seen.fetch_add(1, std::memory_order_relaxed); });
+  (void)registered;
+#endif
+  return forks_seen.load(std::memory_order_relaxed);
+}
+
 class ThreadTeam {
  public:
   // A team of `size` members: the constructing thread (member 0) and size - 1 helpers.
-  explicit ThreadTeam(int size) {
+  explicit ThreadTeam(int size) : made_after_forks_(fork_count()) {
     helpers_.reserve(static_cast<std::size_t>(size - 1));
     for (int member = 1; member < size; ++member) {
       helpers_.emplace_back([this, member] { serve(member); });
@@ -94,6 +112,8 @@ class ThreadTeam {
   }
 
   int size() const { return static_cast<int>(helpers_.size()) + 1; }
+  // Whether its helpers run in this process (not made before a fork() that led here).
+  bool helpers_here() const { return made_after_forks_ == fork_count(); }
 
   // call(body) on members 0..size-1 (size <= this->size()), the calling thread as member 0;
   // returns when all have returned. noexcept: a throwing body ends the program, as it does in
@@ -154,6 +174,7 @@ class ThreadTeam {
   void* body_ = nullptr;
   int active_ = 1;
   bool stop_ = false;
+  unsigned made_after_forks_;
   std::vector<std::thread> helpers_;
 };
 
@@ -162,6 +183,9 @@ class ThreadTeam {
 // simulations stepped side by side on user threads do not share one.
 inline ThreadTeam& team_of_calling_thread(int size) {
   thread_local std::unique_ptr<ThreadTeam> team;
+  if (team && !team->helpers_here()) {
+    (void)team.release();  // made in the parent: its helpers cannot be joined or woken here
+  }
   if (!team || team->size() < size) {
     team.reset();  // its helpers joined before more are made
     team = std::make_unique<ThreadTeam>(size);
