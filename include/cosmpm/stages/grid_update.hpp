@@ -125,7 +125,11 @@ struct NodeMomentumUpdate {
   // From the start velocity v_start: momentum becomes v_start, velocity the trial end velocity.
   COSMPM_ALWAYS_INLINE void operator()(Index n, double inverse_mass,
                                        const Vec<Dim>& v_start) const {
-    Vec<Dim> f = force[n];
+    (*this)(n, inverse_mass, v_start, force[n]);
+  }
+  // ... with the node's force f at hand.
+  COSMPM_ALWAYS_INLINE void operator()(Index n, double inverse_mass, const Vec<Dim>& v_start,
+                                       Vec<Dim> f) const {
     if (damping > 0.0) {
       for (int d = 0; d < Dim; ++d) f[d] = damped(damping, f[d], v_start[d]);
     }
@@ -307,18 +311,28 @@ void update_grid_pass(State& s, double dt) {
       const auto update_node = node_momentum_update<Dim>(nodes, dt, damping);
       const double* const mass = nodes.mass.data();
       const double empty_mass = empty;
+      const auto targets = node_record_targets(s);
       const auto update_nodes = [&](Index run_first, Index run_last,
                                     double* records) COSMPM_INLINE_LAMBDA {
         for (Index n = run_first; n < run_last; ++n) {
-          // The fields written here are read back at once, from the cache: one node pass less.
-          if constexpr (from_records) node_from_record<true>(s, n, records + n * size);
-          const double m = mass[n];
-          if (m <= empty_mass) {
-            update_node.clear(n);
-            continue;
+          if constexpr (from_records) {
+            // The node's fields from its record, and on in registers: one node pass less.
+            const auto taken = node_from_record<true>(s, targets, n, records + n * size);
+            if (taken.mass <= empty_mass) {
+              update_node.clear(n);
+              continue;
+            }
+            const double inverse_mass = 1.0 / taken.mass;  // one division per node, not 2 Dim
+            update_node(n, inverse_mass, Vec<Dim>(taken.momentum * inverse_mass), taken.force);
+          } else {
+            const double m = mass[n];
+            if (m <= empty_mass) {
+              update_node.clear(n);
+              continue;
+            }
+            const double inverse_mass = 1.0 / m;
+            update_node(n, inverse_mass, Vec<Dim>(update_node.momentum[n] * inverse_mass));
           }
-          const double inverse_mass = 1.0 / m;  // one division per node instead of 2 Dim
-          update_node(n, inverse_mass, Vec<Dim>(update_node.momentum[n] * inverse_mass));
         }
       };
       if constexpr (from_records) {

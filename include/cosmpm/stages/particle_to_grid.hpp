@@ -8,6 +8,7 @@
 #include <array>
 #include <cstddef>
 #include <string>
+#include <type_traits>
 #include <vector>
 
 #include "cosmpm/core/compiler.hpp"
@@ -233,24 +234,67 @@ bool scatter_particles(State& s) {
   return first_misplaced == count;
 }
 
+// The node arrays that node_from_record writes, their addresses taken once per node pass.
+// Written through `s.nodes`, each Eigen store (a may-alias packet) made the compiler reload
+// every array's address from the state, and a node update that read the values back waited
+// on those stores: the grid update's node loop took 14-21 ns per node (docs/performance.md,
+// "The grid update's records in registers").
+template <class State>
+struct NodeRecordTargets {
+  double* mass;
+  double* momentum;  // Dim doubles per node
+  double* force;
+  double* rotational_inertia;  // rotational_dofs doubles per node
+  double* spin_momentum;
+  double* moment;
+};
+
+template <class Field>
+double* doubles_of(std::vector<Field>& field) {
+  if constexpr (std::is_same_v<Field, double>) {
+    return field.data();
+  } else {
+    static_assert(sizeof(Field) == Field::SizeAtCompileTime * sizeof(double));
+    return field.empty() ? nullptr : field.data()->data();
+  }
+}
+
+template <class State>
+NodeRecordTargets<State> node_record_targets(State& s) {
+  auto& nodes = s.nodes;
+  return {doubles_of(nodes.mass),          doubles_of(nodes.momentum),
+          doubles_of(nodes.force),         doubles_of(nodes.rotational_inertia),
+          doubles_of(nodes.spin_momentum), doubles_of(nodes.moment)};
+}
+
+// What node_from_record took from a record, in registers for the node pass that goes on.
+template <int Dim>
+struct NodeRecordValues {
+  double mass;
+  Vec<Dim> momentum;
+  Vec<Dim> force;
+};
+
 // Node n's fields from its record of the particle-to-grid map (mass, momentum and, with
 // forces, force and moments), and the record zeroed for the next writer (stages/records.hpp).
 template <bool with_forces, class State>
-COSMPM_ALWAYS_INLINE void node_from_record(State& s, Index n, double* record) {
+COSMPM_ALWAYS_INLINE NodeRecordValues<State::dim> node_from_record(
+    const State& s, const NodeRecordTargets<State>& to, Index n, double* record) {
   constexpr int Dim = State::dim;
   constexpr int R = State::rotational_dofs;
   using Record = typename State::scatter_record;
   constexpr int C = with_forces ? Record::all : Record::weighted;
   // Read into registers and zeroed first: the node fields' stores could alias the record.
-  const double mass = record[Record::mass];
-  Vec<Dim> momentum, force = Vec<Dim>::Zero();
+  NodeRecordValues<Dim> values;
+  values.mass = record[Record::mass];
+  values.force.setZero();
   if constexpr (State::transfer_type::affine) {
-    momentum = nodal_momentum(s, n, record + Record::momentum, record + Record::affine);
+    values.momentum = nodal_momentum(s, n, record + Record::momentum, record + Record::affine);
   } else {
-    for (int d = 0; d < Dim; ++d) momentum[d] = record[Record::momentum + d];
+    for (int d = 0; d < Dim; ++d) values.momentum[d] = record[Record::momentum + d];
   }
   if constexpr (with_forces) {
-    for (int d = 0; d < Dim; ++d) force[d] = record[Record::force + d];
+    for (int d = 0; d < Dim; ++d) values.force[d] = record[Record::force + d];
   }
   std::array<double, R> inertia, spin_momentum, moment{};
   for (int k = 0; k < R; ++k) {
@@ -260,15 +304,17 @@ COSMPM_ALWAYS_INLINE void node_from_record(State& s, Index n, double* record) {
   }
   // A constant count: a count known at run time took a call per node (USL's step +4 %).
   std::fill(record, record + C, 0.0);
-  auto& nodes = s.nodes;
-  nodes.mass[n] = mass;
-  nodes.momentum[n] = momentum;
-  if constexpr (with_forces) nodes.force[n] = force;
-  for (int k = 0; k < R; ++k) {
-    nodes.rotational_inertia[n * R + k] = inertia[k];
-    nodes.spin_momentum[n * R + k] = spin_momentum[k];
-    if constexpr (with_forces) nodes.moment[n * R + k] = moment[k];
+  to.mass[n] = values.mass;
+  for (int d = 0; d < Dim; ++d) {
+    to.momentum[n * Dim + d] = values.momentum[d];
+    if constexpr (with_forces) to.force[n * Dim + d] = values.force[d];
   }
+  for (int k = 0; k < R; ++k) {
+    to.rotational_inertia[n * R + k] = inertia[k];
+    to.spin_momentum[n * R + k] = spin_momentum[k];
+    if constexpr (with_forces) to.moment[n * R + k] = moment[k];
+  }
+  return values;
 }
 
 }  // namespace detail
@@ -288,14 +334,15 @@ void nodes_from_records(State& s, bool with_forces) {
   // updates next, where one thread writing them all cost the two-thread step 14-22 us.
   parallel_region(s.threads, range.size(), [&] {
     const Share share = node_share(range);
+    const auto targets = detail::node_record_targets(s);
     for (const detail::RecordRun run :
          detail::complete_records(pending, scattered, share.first, share.last)) {
       if (with_forces) {
         for (Index n = run.first; n < run.last; ++n)
-          detail::node_from_record<true>(s, n, run.records + n * size);
+          detail::node_from_record<true>(s, targets, n, run.records + n * size);
       } else {
         for (Index n = run.first; n < run.last; ++n)
-          detail::node_from_record<false>(s, n, run.records + n * size);
+          detail::node_from_record<false>(s, targets, n, run.records + n * size);
       }
     }
   });
