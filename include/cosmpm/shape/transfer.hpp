@@ -287,14 +287,17 @@ COSMPM_ALWAYS_INLINE void scatter_rows(
 // register width (core/pack.hpp; GCC left the per-component loops scalar). The per-node
 // factors are laid out as that row first, with zero stress-divergence factors for the
 // weighted-only components: adding their product, +-0, changes no nonzero sum. Records of
-// whole packs skip that layout: their terms are formed in registers, node by node, with the
-// same sums bit for bit (detail::scatter_node_packs).
+// whole packs with forces skip that layout: their terms are formed in registers, node by node,
+// with the same sums bit for bit (detail::scatter_node_packs). Weighted-only records of whole
+// packs (MUSL's remap, padded: stages/remap.hpp) keep the rows, which then also add node by
+// node: in the fused MUSL pass the compiler contracted the node packs' products otherwise than
+// the unpadded record's, which changed the last bits of its results.
 template <int W, int Dim, Kernel K, std::size_t C>
 COSMPM_ALWAYS_INLINE void scatter(
     const SeparableStencil<Dim, K>& s, double* records, const std::array<double, C>& weighted,
     const std::type_identity_t<std::array<std::array<double, Dim>, C - W>>& by_gradient) {
   static_assert(W <= static_cast<int>(C), "shape::scatter: more weighted-only than components");
-  if constexpr (pack_width > 1 && C % pack_width == 0) {
+  if constexpr (pack_width > 1 && C % pack_width == 0 && W < static_cast<int>(C)) {
     detail::scatter_node_packs<W>(s, records, weighted, by_gradient);
   } else {
     detail::scatter_rows<W>(s, records, weighted, by_gradient);

@@ -88,17 +88,18 @@ COSMPM_ALWAYS_INLINE NodeRecordValues<State::dim> node_from_record(const State& 
   using Record = typename State::scatter_record;
   constexpr int C = with_forces ? Record::all : Record::weighted;
   // Read into registers and zeroed first: the node fields' stores could alias the record.
+  // Momentum and force as whole vectors: where the caller spills them (the Cosserat grid
+  // update), a vector built component by component was stored as doubles and read back as
+  // one vector, a load that waits for the stores to reach the cache.
   NodeRecordValues<Dim> values;
   values.mass = record[Record::mass];
   values.force.setZero();
   if constexpr (State::transfer_type::affine) {
     values.momentum = nodal_momentum(s, n, record + Record::momentum, record + Record::affine);
   } else {
-    for (int d = 0; d < Dim; ++d) values.momentum[d] = record[Record::momentum + d];
+    values.momentum = Eigen::Map<const Vec<Dim>>(record + Record::momentum);
   }
-  if constexpr (with_forces) {
-    for (int d = 0; d < Dim; ++d) values.force[d] = record[Record::force + d];
-  }
+  if constexpr (with_forces) values.force = Eigen::Map<const Vec<Dim>>(record + Record::force);
   std::array<double, R> inertia, spin_momentum, moment{};
   for (int k = 0; k < R; ++k) {
     inertia[k] = record[Record::inertia + k];

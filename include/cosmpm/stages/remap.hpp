@@ -26,7 +26,14 @@ namespace detail {
 
 // MUSL's remap record: momentum, the rotational momenta, then an affine transfer's terms.
 template <class State>
-inline constexpr int remap_components = State::dim + State::rotational_dofs + State::affine_terms;
+inline constexpr int remap_terms = State::dim + State::rotational_dofs + State::affine_terms;
+// Its width in doubles: three terms (2D Cosserat, 3D classical) padded with a zero to a pack
+// of four, one pack per node. Three doubles per node put a pack across two nodes, which met
+// part of the last particle's store to a shared node and waited for it to reach the cache
+// (docs/performance.md, "The remap record padded").
+template <class State>
+inline constexpr int remap_components =
+    remap_terms<State> == 3 && pack_width == 4 ? 4 : remap_terms<State>;
 
 // Particle p's updated momenta added to the remap records at its start-of-step stencil st.
 template <class State>
@@ -39,7 +46,7 @@ COSMPM_ALWAYS_INLINE void remap_particle(const State& s, Index p,
   using Continuum = typename State::continuum_type;
   const auto& v = s.particles.template get<particles::field::Velocity<Dim>>();
   const double mass = s.particles.template get<particles::field::Mass>()[p];
-  std::array<double, remap_components<State>> weighted;
+  std::array<double, remap_components<State>> weighted{};  // the padding stays +0
   momentum_terms<State>(s.particles, p, mass, v[p], st, s.stencil_cells[p], stencil_grid,
                         weighted.data(), weighted.data() + Dim + R);
   if constexpr (R > 0) {
