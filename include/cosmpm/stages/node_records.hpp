@@ -88,9 +88,9 @@ COSMPM_ALWAYS_INLINE NodeRecordValues<State::dim> node_from_record(const State& 
   using Record = typename State::scatter_record;
   constexpr int C = with_forces ? Record::all : Record::weighted;
   // Read into registers and zeroed first: the node fields' stores could alias the record.
-  // Momentum and force as whole vectors: where the caller spills them (the Cosserat grid
-  // update), a vector built component by component was stored as doubles and read back as
-  // one vector, a load that waits for the stores to reach the cache.
+  // Momentum and force as whole vectors: built from single doubles, the Cosserat grid update
+  // spilled both as one 256-bit store and read the force back as its upper half, a load that
+  // waited for the store to reach the cache.
   NodeRecordValues<Dim> values;
   values.mass = record[Record::mass];
   values.force.setZero();
