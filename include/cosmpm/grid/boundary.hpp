@@ -105,8 +105,8 @@ void for_each_face_node(const Grid<Dim>& grid, int axis, bool upper, F&& f) {
 }
 
 // f(n), in increasing n, for every node n in [first, last) on the lower (upper = false) or upper
-// face normal to `axis`: a thread's share of a node pass (stages/grid_update.hpp) visits its own
-// face nodes without stepping through the others'. Nodes are numbered i + n_0 (j + n_1 k): the
+// face normal to `axis`: a thread's share of a node pass (stages/grid_conditions.hpp) visits its
+// own face nodes without stepping through the others'. Nodes are numbered i + n_0 (j + n_1 k): the
 // face's nodes come in blocks of `inner` consecutive indices, one block every `outer`.
 template <int Dim, class F>
 void for_each_face_node_in(const Grid<Dim>& grid, int axis, bool upper, Index first, Index last,
