@@ -5,7 +5,6 @@
 // one axis at a time.
 #include <array>
 #include <cstddef>
-#include <cstring>
 #include <type_traits>
 
 #include "cosmpm/core/compiler.hpp"
@@ -119,6 +118,14 @@ COSMPM_ALWAYS_INLINE Gathered<Dim, C, G, Pack<W>> gather(const PackedStencil<Dim
 }
 
 namespace detail {
+// at[l] += add[l] for the lanes of V, stored as doubles: a memcpy's store may alias anything,
+// after which every array address of the particle loop around it is loaded again.
+template <class V>
+COSMPM_ALWAYS_INLINE void add_to_records(double* at, const V& add) {
+  constexpr int lanes = lane_count<V>();
+  cosmpm::detail::store_pack<lanes>(at, cosmpm::detail::load_pack<lanes>(at) + add);
+}
+
 // row[k + l] += weight along[k + l] + sum_{d >= 1} gradient[d] across[d - 1][k + l] for the
 // lanes l of V, in that order of operations whatever V is.
 template <class V, std::size_t Dim, std::size_t N, std::size_t A>
@@ -128,7 +135,7 @@ COSMPM_ALWAYS_INLINE void add_to_row(double* row, int k, double weight,
                                      const std::array<std::array<double, N>, A>& across) {
   // The factors go into registers lane by lane: vector loads of values just stored one by
   // one would stall on store forwarding.
-  V a, r;
+  V a;
   gather_lanes(a, [&](int l) { return along[k + l]; });
   V add = weight * a;
   COSMPM_UNROLL
@@ -137,9 +144,7 @@ COSMPM_ALWAYS_INLINE void add_to_row(double* row, int k, double weight,
     gather_lanes(b, [&](int l) { return across[d][k + l]; });
     add += gradient[d + 1] * b;
   }
-  std::memcpy(&r, row + k, sizeof(V));
-  r += add;
-  std::memcpy(row + k, &r, sizeof(V));
+  add_to_records(row + k, add);
 }
 
 // scatter (below) for records of whole packs, C a multiple of the register width P: a node's
@@ -203,11 +208,7 @@ COSMPM_ALWAYS_INLINE void scatter_node_packs(
           COSMPM_UNROLL
           for (int d = 1; d < Dim; ++d) add += gradient[d] * (forced(j) ? across[i][j][d] : V{});
         }
-        double* const at = row + i * R + j * P;
-        V sum;
-        std::memcpy(&sum, at, sizeof(V));
-        sum += add;
-        std::memcpy(at, &sum, sizeof(V));
+        add_to_records(row + i * R + j * P, add);
       }
     }
   }

@@ -270,7 +270,7 @@ void map_forces_to_grid(State& s) {
   const Vec<Dim> gravity = s.parameters.gravity;
   const shape::StencilGrid<Dim> stencil_grid(s.grid);
   double* const records = s.scatter.data();
-  s.blocks.for_each_coloured(s.threads, s.particles.size(), [&](Index p) {
+  s.blocks.for_each_coloured(s.threads, s.particles.size(), [&](Index p) COSMPM_INLINE_LAMBDA {
     typename State::stencil_type st;
     start_stencil(s, p, stencil_grid, st);
     std::array<double, forces> weighted;
