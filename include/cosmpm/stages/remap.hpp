@@ -142,8 +142,8 @@ void remap_momentum(State& s, double dt) {
   require_start_stencils(s, "remap_momentum");
   double* const records = detail::clear_remap_records(s);
   const shape::StencilGrid<State::dim> stencil_grid(s.grid);
-  // Inlined: GCC left the Cosserat and 3D lambdas out of line, a call per particle that
-  // reloaded every array's address (docs/performance.md, "The remap inlined").
+  // Inlined: GCC left the Cosserat, 3D, B-spline and GIMP lambdas out of line, a call per
+  // particle that reloaded every array's address (docs/performance.md, "The remap inlined").
   s.blocks.for_each_coloured(s.threads, s.particles.size(), [&](Index p) COSMPM_INLINE_LAMBDA {
     typename State::stencil_type st;
     start_stencil(s, p, stencil_grid, st);
