@@ -159,16 +159,18 @@ requires(!Model::is_cosserat) class Classical {
   // --- how a particle loads the grid ----------------------------------------------------
 
   // A particle's nodal internal force -V sigma . grad N, written as sum_i dN/dx_i b[j][i] for
-  // force component j (the transfers contract it one axis at a time).
-  static std::array<std::array<double, dim>, dim> internal_force_coefficients(
-      const stress_type& stress, double volume) {
+  // force component j (the transfers contract it one axis at a time). Value: a double, or a
+  // pack of particles' volumes with their stresses' components as packs (the scatter of packs).
+  template <class Stress, class Value>
+  static std::array<std::array<Value, dim>, dim> internal_force_coefficients(const Stress& stress,
+                                                                             const Value& volume) {
     if constexpr (dim == 2) {
-      const double sxy = -volume * stress[3];
+      const Value sxy = -volume * stress[3];
       return {{{-volume * stress[0], sxy}, {sxy, -volume * stress[1]}}};
     } else {
-      const double sxy = -volume * stress[3];
-      const double sxz = -volume * stress[4];
-      const double syz = -volume * stress[5];
+      const Value sxy = -volume * stress[3];
+      const Value sxz = -volume * stress[4];
+      const Value syz = -volume * stress[5];
       return {{{-volume * stress[0], sxy, sxz},
                {sxy, -volume * stress[1], syz},
                {sxz, syz, -volume * stress[2]}}};

@@ -7,6 +7,7 @@
 // took 16 loads and 12 inserts (docs/performance.md, "Records transposed in registers").
 // Only data moves: every lane's values and arithmetic are those of the lane-by-lane path.
 #include <array>
+#include <cstddef>
 
 #include "cosmpm/core/compiler.hpp"
 #include "cosmpm/core/pack.hpp"
@@ -122,6 +123,54 @@ COSMPM_ALWAYS_INLINE void store_by_component(Address&& address,
   for (int l = 0; l < W; ++l) {
     double* const record = address(l);
     for (int c = 0; c < C; ++c) record[c] = lane_of(packs[c], l);
+  }
+}
+
+// Lane l's records at address(l, n) += lane l of packs[n][c] for n < N, lane after lane: the
+// lanes of one particle each, so a node record that several lanes reach takes their terms in
+// lane order, as W particles scattered one after the other would add them. With AVX and W = 4
+// the packs are transposed as store_by_component's, each lane's chunk of a record added whole.
+template <int W, int C, std::size_t N, class Address>
+COSMPM_ALWAYS_INLINE void add_by_component(Address&& address,
+                                           const std::array<std::array<Pack<W>, C>, N>& packs) {
+#if defined(__AVX__) && (defined(__GNUC__) || defined(__clang__))
+  if constexpr (W == 4) {
+    constexpr int quads = C / 4 * 4;
+    std::array<std::array<std::array<Pack<4>, 4>, (quads > 0 ? quads / 4 : 1)>, N> rows;
+    [[maybe_unused]] std::array<std::array<Pack<4>, 2>, N> pairs;  // lanes 0 and 2, 1 and 3
+    for (std::size_t n = 0; n < N; ++n) {
+      const auto& p = packs[n];
+      for (int k = 0; k < quads; k += 4) {
+        rows[n][k / 4] = detail::transpose4(p[k], p[k + 1], p[k + 2], p[k + 3]);
+      }
+      if constexpr (C - quads >= 2) {
+        pairs[n][0] = __builtin_shufflevector(p[quads], p[quads + 1], 0, 4, 2, 6);
+        pairs[n][1] = __builtin_shufflevector(p[quads], p[quads + 1], 1, 5, 3, 7);
+      }
+    }
+    for (int l = 0; l < 4; ++l) {
+      for (std::size_t n = 0; n < N; ++n) {
+        double* const record = address(l, static_cast<int>(n));
+        for (int k = 0; k < quads; k += 4) {
+          detail::store_pack<4>(record + k, detail::load_pack<4>(record + k) + rows[n][k / 4][l]);
+        }
+        if constexpr (C - quads >= 2) {
+          const Pack<4>& both = pairs[n][l % 2];
+          const Pack<2> pair = l < 2 ? __builtin_shufflevector(both, both, 0, 1)
+                                     : __builtin_shufflevector(both, both, 2, 3);
+          detail::store_pack<2>(record + quads, detail::load_pack<2>(record + quads) + pair);
+        }
+        if constexpr (C % 2 == 1) record[C - 1] += packs[n][C - 1][l];
+      }
+    }
+    return;
+  }
+#endif
+  for (int l = 0; l < W; ++l) {
+    for (std::size_t n = 0; n < N; ++n) {
+      double* const record = address(l, static_cast<int>(n));
+      for (int c = 0; c < C; ++c) record[c] += lane_of(packs[n][c], l);
+    }
   }
 }
 

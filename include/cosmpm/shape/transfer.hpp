@@ -305,4 +305,59 @@ COSMPM_ALWAYS_INLINE void scatter(
   }
 }
 
+// scatter for W particles side by side (lane l for particle l): the terms of each node formed
+// in packs across the particles, then added to the node records particle after particle (all of
+// a lane's nodes before the next lane's), so every record takes its terms in lane order. Per lane
+// the operations of scatter, in its order (a product with a zero factor, which moves no sum, left
+// out). Where one particle's terms took scalar products and lane-by-lane packs along the rows, the
+// pack's take one product per node and component (docs/performance.md, "The scatter across
+// particles").
+template <int Wt, int Dim, Kernel K, int W, std::size_t C>
+COSMPM_ALWAYS_INLINE void scatter_lanes(
+    const PackedStencil<Dim, K, W>& s, double* records, const std::array<Pack<W>, C>& weighted,
+    const std::type_identity_t<std::array<std::array<Pack<W>, Dim>, C - Wt>>& by_gradient) {
+  static_assert(Wt <= static_cast<int>(C), "shape::scatter: more weighted-only than components");
+  using V = Pack<W>;
+  constexpr int S = K::support;
+  constexpr int R = static_cast<int>(C);
+  constexpr int F = R - Wt;
+  // Node i along x: N_x(i) a + dN_x(i) b_x, and N_x(i) b_d for the row's derivatives d >= 1.
+  std::array<std::array<V, R>, S> along;
+  std::array<std::array<std::array<V, Dim>, (F > 0 ? F : 1)>, S> across;
+  COSMPM_UNROLL
+  for (int i = 0; i < S; ++i) {
+    COSMPM_UNROLL
+    for (int c = 0; c < R; ++c) along[i][c] = s.w[0][i] * weighted[c];
+    COSMPM_UNROLL
+    for (int f = 0; f < F; ++f) {
+      along[i][Wt + f] += s.dw[0][i] * by_gradient[f][0];
+      COSMPM_UNROLL
+      for (int d = 1; d < Dim; ++d) across[i][f][d] = s.w[0][i] * by_gradient[f][d];
+    }
+  }
+  constexpr int rows = PackedStencil<Dim, K, W>::rows;
+  std::array<std::array<V, R>, rows * S> terms;  // node r S + i: row r, node i along x
+  std::array<Index, rows * S> node_offsets;
+  COSMPM_UNROLL
+  for (int r = 0; r < rows; ++r) {
+    V weight;
+    std::array<V, Dim> gradient;
+    s.row_factors(r, weight, gradient);
+    COSMPM_UNROLL
+    for (int i = 0; i < S; ++i) {
+      auto& term = terms[r * S + i];
+      COSMPM_UNROLL
+      for (int c = 0; c < R; ++c) term[c] = weight * along[i][c];
+      COSMPM_UNROLL
+      for (int f = 0; f < F; ++f) {
+        COSMPM_UNROLL
+        for (int d = 1; d < Dim; ++d) term[Wt + f] += gradient[d] * across[i][f][d];
+      }
+      node_offsets[r * S + i] = (s.row_offset(r) + i) * R;
+    }
+  }
+  add_by_component<W, R>(
+      [&](int l, int n) { return records + s.first_node[l] * R + node_offsets[n]; }, terms);
+}
+
 }  // namespace cosmpm::shape

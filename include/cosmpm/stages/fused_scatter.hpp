@@ -65,6 +65,52 @@ inline constexpr bool packs_next_stencils = requires(
 }
 &&!shape::UsesHalfWidth<typename State::kernel_type>;
 
+// A continuum whose force coefficients take packs of particles.
+template <class State, int W>
+concept ForceCoefficientsOfPacks =
+    requires(const std::array<Pack<W>, State::model_type::stress_type::SizeAtCompileTime>& stress,
+             const Pack<W>& volume) {
+  State::continuum_type::internal_force_coefficients(stress, volume);
+};
+
+// Compositions whose packs scatter_next_pack scatters across the particles (shape::scatter_lanes):
+// stencils of at most four nodes (bilinear, 2D), no rotational degrees of freedom or affine
+// terms, and a continuum whose force coefficients take packs. The others scatter a pack particle
+// by particle: with the 2D quadratic (9 nodes) and 3D linear (8) stencils the pack's terms spill
+// from the registers, and the fused USL step measured 16 % and 4 % slower (docs/performance.md,
+// "The scatter across particles").
+template <class State, int W>
+inline constexpr bool scatters_packs =
+    W == 4 && State::rotational_dofs == 0 && !State::transfer_type::affine &&
+    ForceCoefficientsOfPacks<State, W> &&
+    PackedStencilOf<State, W>::rows * State::kernel_type::support <= 4 &&
+    cosmpm::detail::transposes_records;
+
+// scatter_particle's terms with forces for particles p, ..., p + W - 1, at their stencils st,
+// formed in packs across the particles.
+template <class State, int W>
+COSMPM_ALWAYS_INLINE void scatter_pack(const ScatterSources<State>& from, Index p,
+                                       const PackedStencilOf<State, W>& st, double* records) {
+  constexpr int Dim = State::dim;
+  constexpr int n = State::model_type::stress_type::SizeAtCompileTime;
+  using Record = typename State::scatter_record;
+  using P = Pack<W>;
+  const P mass = cosmpm::detail::load_pack<W>(from.mass + p);
+  const P volume = cosmpm::detail::load_pack<W>(from.volume + p);
+  const auto v = load_by_component<W, Dim>([&](int l) { return from.v[p + l].data(); });
+  const auto stress = load_by_component<W, n>([&](int l) { return from.stress[p + l].data(); });
+  std::array<P, Record::all> weighted;
+  std::array<std::array<P, Dim>, Record::all - Record::weighted> by_gradient;
+  weighted[Record::mass] = mass;
+  for (int d = 0; d < Dim; ++d) weighted[Record::momentum + d] = mass * v[d];
+  const auto b = State::continuum_type::internal_force_coefficients(stress, volume);
+  for (int d = 0; d < Dim; ++d) {
+    weighted[Record::force + d] = mass * from.gravity[d];
+    for (int e = 0; e < Dim; ++e) by_gradient[d][e] = b[d][e];
+  }
+  shape::scatter_lanes<Record::weighted>(st, records, weighted, by_gradient);
+}
+
 // scatter_next for particles p, ..., p + W - 1 in that order, their stencils computed side by
 // side with each lane's arithmetic as SeparableStencil::try_compute's, so the same records. A
 // pack with a lane outside the valid range goes lane by lane, which reports it.
@@ -99,11 +145,17 @@ COSMPM_ALWAYS_INLINE void scatter_next_pack(State& s, const ScatterSources<State
           stencil_grid, [&](int l) -> const Vec<Dim>& { return s.stencil_cells[p + l]; },
           [&](int l) -> const Vec<Dim>& { return from.half[p + l]; });
       for (int l = 0; l < W; ++l) {
-        const Index q = p + l;
         report.lowest_node = std::min(report.lowest_node, st.first_node[l]);
         report.highest_node = std::max(report.highest_node, st.first_node[l]);
-        scatter_particle<true, State>(s.particles, from, q, st.lane(l), s.stencil_cells[q],
-                                      stencil_grid, records);
+      }
+      if constexpr (scatters_packs<State, W>) {
+        scatter_pack(from, p, st, records);
+      } else {
+        for (int l = 0; l < W; ++l) {
+          const Index q = p + l;
+          scatter_particle<true, State>(s.particles, from, q, st.lane(l), s.stencil_cells[q],
+                                        stencil_grid, records);
+        }
       }
       return;
     }
