@@ -77,7 +77,7 @@ concept ForceCoefficientsOfPacks =
 // stencils of at most four nodes (bilinear, 2D), no rotational degrees of freedom or affine
 // terms, and a continuum whose force coefficients take packs. The others scatter a pack particle
 // by particle: with the 2D quadratic (9 nodes) and 3D linear (8) stencils the pack's terms spill
-// from the registers, and the fused USL step measured 16 % and 4 % slower (docs/performance.md,
+// from the registers, and the fused USL step measured 14 % and 4 % slower (docs/performance.md,
 // "The scatter across particles").
 template <class State, int W>
 inline constexpr bool scatters_packs =
