@@ -23,11 +23,11 @@ using PolarContinuum = continuum::Cosserat<PolarSoil>;
 
 // The step benchmarks' soils (benchmarks/simulation/step_support.hpp): corn, and the paper's
 // Cosserat parameters (Gc = 2.3 MPa, l = 10 mm, micro-inertia 12.5e-6 m^2).
+// Continuum: these continua, or types built on them with their constructors.
 template <class Continuum>
 Continuum benchmark_soil() {
-  if constexpr (std::is_same_v<Continuum, PolarContinuum>) {
-    return PolarContinuum(PolarSoil(2.76e6, 0.2, 2.3e6, 0.01, 26.0, 2.0),
-                          {.micro_inertia = 12.5e-6});
+  if constexpr (std::is_base_of_v<PolarContinuum, Continuum>) {
+    return Continuum(PolarSoil(2.76e6, 0.2, 2.3e6, 0.01, 26.0, 2.0), {.micro_inertia = 12.5e-6});
   } else {
     return Continuum(Soil({.youngs_modulus = 2.76e6,
                            .poisson_ratio = 0.2,

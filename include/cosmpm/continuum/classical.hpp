@@ -17,6 +17,7 @@
 #include "cosmpm/continuum/particle_fields.hpp"
 #include "cosmpm/continuum/rates.hpp"
 #include "cosmpm/core/compiler.hpp"
+#include "cosmpm/core/pack.hpp"
 #include "cosmpm/core/types.hpp"
 #include "cosmpm/grid/grid.hpp"
 #include "cosmpm/material/concept.hpp"
@@ -178,16 +179,17 @@ requires(!Model::is_cosserat) class Classical {
   }
 
   // --- rotational degrees of freedom: none ----------------------------------------------
-  template <class Store>
-  static std::array<double, 0> rotational_inertia(const Store&, Index, double) {
+  template <class Store, class V>
+  static std::array<V, 0> rotational_inertia(const Store&, Index, const V&) {
     return {};
   }
-  template <class Store>
-  static std::array<double, 0> rotational_velocity(const Store&, Index) {
+  template <int W = 1, class Store>
+  static std::array<Pack<W>, 0> rotational_velocity(const Store&, Index) {
     return {};
   }
-  static void rotational_force_terms(const stress_type&, double, double*,
-                                     std::array<double, dim>*) {}
+  template <class Stress, class Value>
+  static void rotational_force_terms(const Stress&, const Value&, Value*, std::array<Value, dim>*) {
+  }
   template <class Store>
   static void update_rotations(Store&, Index, double, double, const std::array<double, 0>&,
                                const std::array<double, 0>&) {}

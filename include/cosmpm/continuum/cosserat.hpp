@@ -146,17 +146,20 @@ requires(Model::is_cosserat&& material::dimension_of<Model> == 2) class Cosserat
 
   // --- how a particle loads the grid ----------------------------------------------------
 
-  // A particle's nodal force -V s_ij dN/dx_i as sum_i dN/dx_i b[j][i] for component j.
-  static std::array<std::array<double, 2>, 2> internal_force_coefficients(const stress_type& stress,
-                                                                          double volume) {
+  // A particle's nodal force -V s_ij dN/dx_i as sum_i dN/dx_i b[j][i] for component j; Value a
+  // double, or a pack for W particles (each lane the double's arithmetic).
+  template <class Stress, class Value>
+  static std::array<std::array<Value, 2>, 2> internal_force_coefficients(const Stress& stress,
+                                                                         const Value& volume) {
     return {
         {{-volume * stress[0], -volume * stress[4]}, {-volume * stress[3], -volume * stress[1]}}};
   }
 
   // A particle's nodal moment -V m_3i dN/dx_i + V (s_xy - s_yx) N as N weighted[0] +
   // sum_i dN/dx_i by_gradient[0][i].
-  static void rotational_force_terms(const stress_type& stress, double volume, double* weighted,
-                                     std::array<double, 2>* by_gradient) {
+  template <class Stress, class Value>
+  static void rotational_force_terms(const Stress& stress, const Value& volume, Value* weighted,
+                                     std::array<Value, 2>* by_gradient) {
     weighted[0] = volume * (stress[3] - stress[4]);
     by_gradient[0] = {-volume * stress[5], -volume * stress[6]};
   }
@@ -164,14 +167,16 @@ requires(Model::is_cosserat&& material::dimension_of<Model> == 2) class Cosserat
   // --- the rotational degree of freedom -------------------------------------------------
 
   // A particle's rotational inertia m J and spin, which the particle-to-grid map spreads as
-  // N m J and N m J spin.
-  template <class Store>
-  static std::array<double, 1> rotational_inertia(const Store& particles, Index p, double mass) {
-    return {mass * particles.template get<particles::field::MicroInertia>()[p]};
+  // N m J and N m J spin; V a double, or a pack for particles p, ..., p + W - 1.
+  template <class Store, class V>
+  static std::array<V, 1> rotational_inertia(const Store& particles, Index p, const V& mass) {
+    const double* const inertia = &particles.template get<particles::field::MicroInertia>()[p];
+    return {mass * cosmpm::detail::load_pack<lane_count<V>()>(inertia)};
   }
-  template <class Store>
-  static std::array<double, 1> rotational_velocity(const Store& particles, Index p) {
-    return {particles.template get<particles::field::MicroSpin>()[p]};
+  template <int W = 1, class Store>
+  static std::array<Pack<W>, 1> rotational_velocity(const Store& particles, Index p) {
+    return {
+        cosmpm::detail::load_pack<W>(&particles.template get<particles::field::MicroSpin>()[p])};
   }
 
   // Grid to particle: spin (PIC/FLIP blend, as the velocity) and micro-rotation from the

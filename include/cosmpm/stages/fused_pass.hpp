@@ -201,8 +201,11 @@ void update_stress_and_map_to_grid(State& s, double dt, const double* velocity_r
         for (Index begin = first; begin < last; begin += update_run) {
           const Index end = std::min(begin + update_run, last);
           // Before the scatter moves the run's stencils to the new positions.
-          update_stress_of_run(s, begin, end, dt, stencil_grid, velocity_records, r.first_bad);
-          scatter_next_range(s, from, begin, end, stencil_grid, records, r);
+          RunStresses<State> stresses;
+          update_stress_of_run(s, begin, end, dt, stencil_grid, velocity_records, r.first_bad,
+                               stresses);
+          scatter_next_range(s, from, begin, end, stencil_grid, records, r,
+                             stresses.empty() ? nullptr : stresses.data());
         }
         return r;
       });

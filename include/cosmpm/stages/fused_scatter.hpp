@@ -65,32 +65,43 @@ inline constexpr bool packs_next_stencils = requires(
 }
 &&!shape::UsesHalfWidth<typename State::kernel_type>;
 
-// A continuum whose force coefficients take packs of particles.
+// A continuum whose particle-to-grid terms take packs of particles (force_contribution and
+// rotational_terms of stages/particle_to_grid.hpp on packs).
 template <class State, int W>
-concept ForceCoefficientsOfPacks =
-    requires(const std::array<Pack<W>, State::model_type::stress_type::SizeAtCompileTime>& stress,
-             const Pack<W>& volume) {
+concept ScatterTermsOfPacks = requires(
+    const typename State::store_type& particles,
+    const std::array<Pack<W>, State::model_type::stress_type::SizeAtCompileTime>& stress,
+    const Pack<W>& volume, Pack<W>* weighted, std::array<Pack<W>, State::dim>* by_gradient) {
   State::continuum_type::internal_force_coefficients(stress, volume);
+  State::continuum_type::rotational_force_terms(stress, volume, weighted, by_gradient);
+  State::continuum_type::rotational_inertia(particles, Index{}, volume);
+  State::continuum_type::template rotational_velocity<W>(particles, Index{});
 };
 
 // Compositions whose packs scatter_next_pack scatters across the particles (shape::scatter_lanes):
-// stencils of at most four nodes (bilinear, 2D), no rotational degrees of freedom or affine
-// terms, and a continuum whose force coefficients take packs. The others scatter a pack particle
-// by particle: with the 2D quadratic (9 nodes) and 3D linear (8) stencils the pack's terms spill
-// from the registers, and the fused USL step measured 14 % and 4 % slower (docs/performance.md,
-// "The scatter across particles").
+// stencils of at most four nodes (bilinear, 2D), at most one rotational degree of freedom (the 2D
+// Cosserat record of eight doubles), no affine terms, and a continuum whose terms take packs. The
+// others scatter a pack particle by particle: with the 2D quadratic (9 nodes) and 3D linear (8)
+// stencils the pack's terms spill from the registers, and the fused USL step measured 14 % and 4 %
+// slower (docs/performance.md, "The scatter across particles").
 template <class State, int W>
 inline constexpr bool scatters_packs =
-    W == 4 && State::rotational_dofs == 0 && !State::transfer_type::affine &&
-    ForceCoefficientsOfPacks<State, W> &&
+    W == 4 && State::rotational_dofs <= 1 && !State::transfer_type::affine &&
+    ScatterTermsOfPacks<State, W> &&
     PackedStencilOf<State, W>::rows * State::kernel_type::support <= 4 &&
     cosmpm::detail::transposes_records;
 
-// scatter_particle's terms with forces for particles p, ..., p + W - 1, at their stencils st,
-// formed in packs across the particles.
+// The stresses of W particles, one pack per component.
 template <class State, int W>
-COSMPM_ALWAYS_INLINE void scatter_pack(const ScatterSources<State>& from, Index p,
-                                       const PackedStencilOf<State, W>& st, double* records) {
+using StressOfPack = std::array<Pack<W>, State::model_type::stress_type::SizeAtCompileTime>;
+
+// scatter_particle's terms with forces for particles p, ..., p + W - 1, at their stencils st,
+// formed in packs across the particles; their stresses from `held` (null: the particles').
+template <class State, int W>
+COSMPM_ALWAYS_INLINE void scatter_pack(const typename State::store_type& particles,
+                                       const ScatterSources<State>& from, Index p,
+                                       const PackedStencilOf<State, W>& st, double* records,
+                                       const StressOfPack<State, W>* held) {
   constexpr int Dim = State::dim;
   constexpr int n = State::model_type::stress_type::SizeAtCompileTime;
   using Record = typename State::scatter_record;
@@ -98,26 +109,31 @@ COSMPM_ALWAYS_INLINE void scatter_pack(const ScatterSources<State>& from, Index 
   const P mass = cosmpm::detail::load_pack<W>(from.mass + p);
   const P volume = cosmpm::detail::load_pack<W>(from.volume + p);
   const auto v = load_by_component<W, Dim>([&](int l) { return from.v[p + l].data(); });
-  const auto stress = load_by_component<W, n>([&](int l) { return from.stress[p + l].data(); });
+  const StressOfPack<State, W> stress =
+      held != nullptr ? *held
+                      : load_by_component<W, n>([&](int l) { return from.stress[p + l].data(); });
   std::array<P, Record::all> weighted;
   std::array<std::array<P, Dim>, Record::all - Record::weighted> by_gradient;
   weighted[Record::mass] = mass;
   for (int d = 0; d < Dim; ++d) weighted[Record::momentum + d] = mass * v[d];
-  const auto b = State::continuum_type::internal_force_coefficients(stress, volume);
-  for (int d = 0; d < Dim; ++d) {
-    weighted[Record::force + d] = mass * from.gravity[d];
-    for (int e = 0; e < Dim; ++e) by_gradient[d][e] = b[d][e];
+  if constexpr (State::rotational_dofs > 0) {
+    rotational_terms<State>(particles, p, mass, weighted.data() + Record::inertia,
+                            weighted.data() + Record::spin_momentum);
   }
+  force_contribution<State>(mass, volume, stress, from.gravity, weighted.data() + Record::force,
+                            by_gradient);
   shape::scatter_lanes<Record::weighted>(st, records, weighted, by_gradient);
 }
 
 // scatter_next for particles p, ..., p + W - 1 in that order, their stencils computed side by
 // side with each lane's arithmetic as SeparableStencil::try_compute's, so the same records. A
-// pack with a lane outside the valid range goes lane by lane, which reports it.
+// pack with a lane outside the valid range goes lane by lane, which reports it. stress: the
+// particles' stresses as packs, where the caller holds them (else null).
 template <int W, class State>
 COSMPM_ALWAYS_INLINE void scatter_next_pack(State& s, const ScatterSources<State>& from, Index p,
                                             const shape::StencilGrid<State::dim>& stencil_grid,
-                                            double* records, FusedHalfReport& report) {
+                                            double* records, FusedHalfReport& report,
+                                            const StressOfPack<State, W>* stress = nullptr) {
   constexpr int Dim = State::dim;
   using K = typename State::kernel_type;
   using P = Pack<W>;
@@ -149,7 +165,7 @@ COSMPM_ALWAYS_INLINE void scatter_next_pack(State& s, const ScatterSources<State
         report.highest_node = std::max(report.highest_node, st.first_node[l]);
       }
       if constexpr (scatters_packs<State, W>) {
-        scatter_pack(from, p, st, records);
+        scatter_pack(s.particles, from, p, st, records, stress);
       } else {
         for (int l = 0; l < W; ++l) {
           const Index q = p + l;
@@ -165,15 +181,19 @@ COSMPM_ALWAYS_INLINE void scatter_next_pack(State& s, const ScatterSources<State
 
 // scatter_next for particles first, ..., last - 1: packs from `first`, the rest one by one. The
 // fused USL pass groups its particles the same way; a fresh scatter must too, so that it repeats
-// the pass's bits where the compiler contracts multiply-adds (-march=native).
+// the pass's bits where the compiler contracts multiply-adds (-march=native). stresses: the
+// whole packs' stresses from `first` on, where the caller holds them (else null).
 template <class State>
-COSMPM_ALWAYS_INLINE void scatter_next_range(State& s, const ScatterSources<State>& from,
-                                             Index first, Index last,
-                                             const shape::StencilGrid<State::dim>& stencil_grid,
-                                             double* records, FusedHalfReport& report) {
+COSMPM_ALWAYS_INLINE void scatter_next_range(
+    State& s, const ScatterSources<State>& from, Index first, Index last,
+    const shape::StencilGrid<State::dim>& stencil_grid, double* records, FusedHalfReport& report,
+    const StressOfPack<State, pack_width>* stresses = nullptr) {
   constexpr int W = pack_width;
   Index q = first;
-  for (; q + W <= last; q += W) scatter_next_pack<W>(s, from, q, stencil_grid, records, report);
+  for (; q + W <= last; q += W) {
+    scatter_next_pack<W>(s, from, q, stencil_grid, records, report,
+                         stresses != nullptr ? stresses + (q - first) / W : nullptr);
+  }
   for (; q < last; ++q) scatter_next(s, from, q, stencil_grid, records, report);
 }
 

@@ -12,6 +12,7 @@
 
 #include "cosmpm/core/compiler.hpp"
 #include "cosmpm/core/error.hpp"
+#include "cosmpm/core/pack.hpp"
 #include "cosmpm/core/parallel.hpp"
 #include "cosmpm/core/types.hpp"
 #include "cosmpm/particles/fields.hpp"
@@ -45,12 +46,13 @@ void require_start_stencils(const State& s, const char* where) {
 
 // A particle's force (and moments) on the nodes as N weighted + grad N . by_gradient: weight
 // m g and the stress divergence (Continuum::internal_force_coefficients), then the
-// continuum's rotational terms. `weighted` points at the force's first component.
-template <class State, std::size_t F>
+// continuum's rotational terms. `weighted` points at the force's first component. Value is a
+// double, or a pack for W particles (stages/fused_scatter.hpp, scatter_pack), each lane the
+// double's arithmetic.
+template <class State, class Value, class Stress, std::size_t F>
 COSMPM_ALWAYS_INLINE void force_contribution(
-    double mass, double volume, const typename State::model_type::stress_type& stress,
-    const Vec<State::dim>& gravity, double* weighted,
-    std::array<std::array<double, State::dim>, F>& by_gradient) {
+    const Value& mass, const Value& volume, const Stress& stress, const Vec<State::dim>& gravity,
+    Value* weighted, std::array<std::array<Value, State::dim>, F>& by_gradient) {
   constexpr int Dim = State::dim;
   static_assert(F == Dim + State::rotational_dofs, "force and moment components");
   using Continuum = typename State::continuum_type;
@@ -87,6 +89,28 @@ COSMPM_ALWAYS_INLINE void momentum_terms(
     }
   } else {
     for (int d = 0; d < Dim; ++d) momentum[d] = mass * velocity[d];
+  }
+}
+
+// A particle's rotational terms of the particle-to-grid map, its inertia m J at `inertia` and
+// spin momentum m J spin at `spin_momentum` for each rotational degree of freedom; Value a
+// double, or a pack for particles p, ..., p + W - 1.
+template <class State, class Value>
+COSMPM_ALWAYS_INLINE void rotational_terms(const typename State::store_type& particles, Index p,
+                                           const Value& mass, Value* inertia,
+                                           Value* spin_momentum) {
+  using Continuum = typename State::continuum_type;
+  constexpr int W = lane_count<Value>();
+  const auto j = Continuum::rotational_inertia(particles, p, mass);
+  std::array<Value, State::rotational_dofs> spin;
+  if constexpr (W == 1) {
+    spin = Continuum::rotational_velocity(particles, p);  // any continuum of the concept
+  } else {
+    spin = Continuum::template rotational_velocity<W>(particles, p);
+  }
+  for (int k = 0; k < State::rotational_dofs; ++k) {
+    inertia[k] = j[k];
+    spin_momentum[k] = j[k] * spin[k];
   }
 }
 
@@ -132,7 +156,6 @@ COSMPM_ALWAYS_INLINE void scatter_particle(const typename State::store_type& par
   constexpr int Dim = State::dim;
   constexpr int R = State::rotational_dofs;
   using Record = typename State::scatter_record;
-  using Continuum = typename State::continuum_type;
   constexpr int W = Record::weighted;
   constexpr int C = with_forces ? Record::all : W;
   const double mp = from.mass[p];
@@ -147,12 +170,8 @@ COSMPM_ALWAYS_INLINE void scatter_particle(const typename State::store_type& par
     for (int d = 0; d < Dim; ++d) weighted[Record::momentum + d] = mp * from.v[p][d];
   }
   if constexpr (R > 0) {
-    const auto inertia = Continuum::rotational_inertia(particles, p, mp);
-    const auto spin = Continuum::rotational_velocity(particles, p);
-    for (int k = 0; k < R; ++k) {
-      weighted[Record::inertia + k] = inertia[k];
-      weighted[Record::spin_momentum + k] = inertia[k] * spin[k];
-    }
+    rotational_terms<State>(particles, p, mp, weighted.data() + Record::inertia,
+                            weighted.data() + Record::spin_momentum);
   }
   if constexpr (with_forces) {
     force_contribution<State>(mp, from.volume[p], from.stress[p], from.gravity,

@@ -62,11 +62,26 @@ template <class State>
 using RunRates =
     std::array<PackedRates<State>, (rotates_packs<State> ? update_run / pack_width : 0)>;
 
+// Whether stage 4b updates whole packs with the model's own update on packs
+// (material::HasPacksUpdate), the stresses rotated on packs too.
+template <class State>
+inline constexpr bool updates_packs =
+    rotates_packs<State>&& material::HasPacksUpdate<typename State::model_type, pack_width>;
+
+// The run's stresses after the model's update, one array of components per whole pack of the
+// run, where updates_packs: the fused MUSL pass scatters them from here (fused_scatter.hpp)
+// instead of loading them back from the particles' records.
+template <class State>
+using RunStresses =
+    std::array<std::array<Pack<pack_width>, State::model_type::stress_type::SizeAtCompileTime>,
+               (updates_packs<State> ? update_run / pack_width : 0)>;
+
 // held: the rates of the run's whole packs from stage 4a (with rotates_packs), else null for
 // EngineState::particle_rates; the particles after the last whole pack always come from there.
+// sigma_packs: where the whole packs' stresses go (as well as to the particles).
 template <class State>
 COSMPM_ALWAYS_INLINE void update_stress_run(State& s, Index begin, Index size, double dt,
-                                            Index& first_bad,
+                                            Index& first_bad, RunStresses<State>& sigma_packs,
                                             const PackedRates<State>* held = nullptr) {
   constexpr int Dim = State::dim;
   using Model = typename State::model_type;
@@ -87,7 +102,7 @@ COSMPM_ALWAYS_INLINE void update_stress_run(State& s, Index begin, Index size, d
   constexpr bool packed = rotates_packs<State>;
   // The model's update on the same packs where it has one (material::HasPacksUpdate), for
   // the whole packs; update_batch for the rest.
-  constexpr bool packed_model = packed && material::HasPacksUpdate<Model, W>;
+  constexpr bool packed_model = updates_packs<State>;
   using StressPacks = std::array<P, n>;
   // ... and the strains accumulated on the same packs where the continuum can.
   constexpr bool packed_strain =
@@ -95,7 +110,6 @@ COSMPM_ALWAYS_INLINE void update_stress_run(State& s, Index begin, Index size, d
     Continuum::accumulate_strain(strain_packs, step);
   };
   constexpr std::size_t packs_held = packed_model ? update_run / W : 0;
-  std::array<StressPacks, packs_held> sigma_packs;
   std::array<StressPacks, packs_held> increment_packs;
   Index packed_end = 0;  // the particles done in packs
   if constexpr (packed) {

@@ -210,15 +210,17 @@ COSMPM_ALWAYS_INLINE void rates_of_range(State& s, Index first, Index last,
 }
 
 // Stages 4a (from `records`; none: the rates are in s.particle_rates already) and 4b for the
-// run of particles [begin, end), its whole packs' rates handed over as packs where 4b takes them.
+// run of particles [begin, end), its whole packs' rates handed over as packs where 4b takes them;
+// the whole packs' new stresses also in `stresses` (update_stress_run).
 template <class State>
 COSMPM_ALWAYS_INLINE void update_stress_of_run(State& s, Index begin, Index end, double dt,
                                                const shape::StencilGrid<State::dim>& stencil_grid,
-                                               const double* records, Index& first_bad) {
+                                               const double* records, Index& first_bad,
+                                               RunStresses<State>& stresses) {
   RunRates<State> rates;
   PackedRates<State>* const held = records != nullptr && !rates.empty() ? rates.data() : nullptr;
   if (records != nullptr) rates_of_range(s, begin, end, stencil_grid, records, held);
-  update_stress_run(s, begin, end - begin, dt, first_bad, held);
+  update_stress_run(s, begin, end - begin, dt, first_bad, stresses, held);
 }
 }  // namespace detail
 
@@ -321,7 +323,8 @@ void update_stress(State& s, double dt) {
     Index bad = count;  // this thread's first, in a register
     const Share share = static_share(runs);
     for (Index r = share.first; r < share.last; ++r) {
-      detail::update_stress_run(s, r * run, std::min(run, count - r * run), dt, bad);
+      detail::RunStresses<State> stresses;
+      detail::update_stress_run(s, r * run, std::min(run, count - r * run), dt, bad, stresses);
     }
     combine_min(first_bad, bad);
   });
@@ -354,8 +357,9 @@ void update_stress_from_grid(State& s, double dt, const std::vector<Vec<State::d
       const Share share = static_share(runs);
       for (Index r = share.first; r < share.last; ++r) {
         const Index begin = r * run;
+        detail::RunStresses<State> stresses;
         detail::update_stress_of_run(s, begin, std::min(begin + run, count), dt, stencil_grid,
-                                     records, bad);
+                                     records, bad, stresses);
       }
       combine_min(first_bad, bad);
     });
